@@ -1,0 +1,29 @@
+// rigflex: flexible models, modes and reduction of multi-filar pendulum rigs.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "apps/commands.hpp"
+#include "io/input_error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"rigflex: frame models, modes and reduction for multi-filar pendulum rigs"};
+  app.require_subcommand(1);
+  int exit_code = 0;
+  rigflex::app::add_mass_command(app, exit_code);
+  rigflex::app::add_modes_command(app, exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const rigflex::io::InputError& e) {
+    std::cerr << "rigflex: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "rigflex: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "rigflex: failed: " << e.what() << "\n";
+    return 3;
+  }
+  return exit_code;
+}

@@ -1,0 +1,86 @@
+// rigflex modes MODEL.yaml [--count N] [--out DIR]: natural frequencies,
+// modal masses, effective mass fractions; modes.json and ParaView files.
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "apps/commands.hpp"
+#include "io/atomic_file.hpp"
+#include "io/model_reader.hpp"
+#include "io/modes_json.hpp"
+#include "io/vtk_modes.hpp"
+#include "reduction/modal_analysis.hpp"
+
+namespace rigflex::app {
+namespace {
+
+struct ModesArgs {
+  std::string model;
+  int count = 10;
+  std::string out;
+  std::optional<double> shift_hz;
+  bool quiet = false;
+};
+
+void print_table(const reduction::ModalAnalysis& a) {
+  const auto& s = a.summary;
+  std::printf("%5s %14s %14s %7s %7s %7s %7s %7s %7s %10s\n", "mode", "f [Hz]", "modal mass", "TX", "TY", "TZ", "RX",
+              "RY", "RZ", "residual");
+  for (Eigen::Index k = 0; k < s.frequencies_hz.size(); ++k) {
+    std::printf("%5ld %14.6f %14.6g", static_cast<long>(k + 1), s.frequencies_hz(k), s.modal_mass(k));
+    for (int d = 0; d < 6; ++d) std::printf(" %7.4f", s.effective_mass_fraction(k, d));
+    std::printf(" %10.2e\n", a.result.residuals(k));
+  }
+  std::printf("effective mass fractions of the total in each rigid direction (rotations about the CoG)\n");
+  std::printf("M-orthonormality error max|X'MX - I| = %.2e\n", a.result.orthogonality_error);
+}
+
+int run(const ModesArgs& args) {
+  const io::ModelFile m = io::read_model(args.model);
+  reduction::EigenOptions opt;
+  opt.count = args.count;
+  if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
+  if (!args.quiet)
+    opt.progress = [](const reduction::EigenProgress& p) {
+      std::fprintf(stderr, "\rlanczos: restart %d, %d converged", p.restart, p.converged);
+      std::fflush(stderr);
+    };
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt);
+  if (!args.quiet) std::fprintf(stderr, "\n");
+  std::printf("model: %s, %ld free DOFs, mass %.6g kg\n", m.name.c_str(), static_cast<long>(a.system.dofs.free_count()),
+              a.mass.mass);
+  if (!a.mechanism.empty()) {
+    std::fprintf(stderr, "rigflex: error: %s: the model is a mechanism; K - sigma M is singular. Free DOFs:\n",
+                 args.model.c_str());
+    for (const auto& d : a.mechanism) std::fprintf(stderr, "  %s\n", d.c_str());
+    std::fprintf(stderr, "add supports, springs or mass to these DOFs\n");
+    return 1;
+  }
+  if (a.result.converged_count > 0) print_table(a);
+  if (!a.result.converged) std::fprintf(stderr, "rigflex: warning: %s\n", a.result.message.c_str());
+  if (!args.out.empty() && a.result.converged_count > 0) {
+    const std::filesystem::path dir(args.out);
+    io::FileBatch batch;
+    batch.add_text(dir / "modes.json", io::modes_json(m.name, a).dump(2) + "\n");
+    io::add_mode_shape_files(batch, dir, m.model, a.system.dofs, a.summary.frequencies_hz, a.result.vectors);
+    batch.commit();
+    std::printf("wrote %s/modes.json, modes.pvd and %ld mode_NNN.vtu\n", args.out.c_str(),
+                static_cast<long>(a.result.vectors.cols()));
+  }
+  return a.result.converged ? 0 : 1;
+}
+
+}  // namespace
+
+void add_modes_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a model");
+  auto args = std::make_shared<ModesArgs>();
+  cmd->add_option("model", args->model, "model YAML file")->required();
+  cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(CLI::PositiveNumber);
+  cmd->add_option("--out", args->out, "folder for modes.json, modes.pvd and mode_NNN.vtu");
+  cmd->add_option("--shift-hz", args->shift_hz, "spectral shift as a frequency: sigma = -(2 pi f)^2");
+  cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
+  cmd->callback([args, &exit_code] { exit_code = run(*args); });
+}
+
+}  // namespace rigflex::app

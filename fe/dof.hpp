@@ -1,0 +1,17 @@
+#pragma once
+// Degrees of freedom: every node carries six, in this order, in global axes.
+#include <array>
+#include <string_view>
+
+namespace rigflex::fe {
+
+inline constexpr int kDofsPerNode = 6;
+
+enum class Dof : int { UX = 0, UY = 1, UZ = 2, RX = 3, RY = 4, RZ = 5 };
+
+inline constexpr std::array<std::string_view, kDofsPerNode> kDofNames{"UX", "UY", "UZ",
+                                                                      "RX", "RY", "RZ"};
+
+inline std::string_view dof_name(int local_dof) { return kDofNames.at(static_cast<size_t>(local_dof)); }
+
+}  // namespace rigflex::fe

@@ -1,0 +1,83 @@
+#include "fe/element_loop.hpp"
+
+#include <map>
+
+#include "fe/beam_element.hpp"
+#include "fe/discrete_elements.hpp"
+#include "fe/shell_element.hpp"
+
+namespace rigflex::fe {
+namespace {
+
+std::vector<long> node_dofs(const Model& model, const std::vector<NodeId>& ids) {
+  std::vector<long> dofs;
+  dofs.reserve(6 * ids.size());
+  for (NodeId id : ids) {
+    const long base = 6 * static_cast<long>(model.node_index(id));
+    for (int d = 0; d < 6; ++d) dofs.push_back(base + d);
+  }
+  return dofs;
+}
+
+void visit_beams(const Model& model, const ElementVisitor& visit) {
+  std::map<std::string, BeamProperties> cache;
+  for (const BeamElement& b : model.beams) {
+    auto it = cache.find(b.section);
+    if (it == cache.end()) {
+      const BeamSection& s = model.beam_sections.at(b.section);
+      const Material& m = model.materials.at(s.material);
+      BeamProperties p;
+      p.E = m.E;
+      p.G = m.G();
+      p.rho = m.rho;
+      p.section = section_properties(s, m.nu);
+      it = cache.emplace(b.section, p).first;
+    }
+    BeamProperties p = it->second;
+    p.theory = b.theory;
+    p.mass = b.mass;
+    p.rotary_inertia = b.rotary_inertia;
+    const ElementMatrices e = beam_matrices(model.position(b.nodes[0]), model.position(b.nodes[1]), b.orientation, p);
+    visit(node_dofs(model, {b.nodes[0], b.nodes[1]}), e.K, e.M);
+  }
+}
+
+void visit_shells(const Model& model, const ElementVisitor& visit) {
+  std::vector<Vec3> x;
+  for (const ShellElement& s : model.shells) {
+    const ShellSection& sec = model.shell_sections.at(s.section);
+    const Material& m = model.materials.at(sec.material);
+    const ShellProperties p{m.E, m.nu, m.rho, sec.thickness, s.mass};
+    x.clear();
+    for (NodeId id : s.nodes) x.push_back(model.position(id));
+    const ElementMatrices e = s.formulation() == ShellFormulation::Quad8 ? shell_quad8(x, p) : shell_mitc4(x, p);
+    visit(node_dofs(model, s.nodes), e.K, e.M);
+  }
+}
+
+void visit_discrete(const Model& model, const ElementVisitor& visit) {
+  const Eigen::MatrixXd zero6 = Eigen::MatrixXd::Zero(6, 6);
+  for (const PointMass& p : model.point_masses) visit(node_dofs(model, {p.node}), zero6, point_mass_matrix(p));
+  for (const Spring& s : model.springs) {
+    const Vec3& xa = model.position(s.node);
+    const Vec3 xb = s.other ? model.position(*s.other) : xa;
+    const Eigen::Matrix<double, 6, 6> k = spring_stiffness(s, xa, xb);
+    if (!s.other) {
+      visit(node_dofs(model, {s.node}), k, zero6);
+      continue;
+    }
+    Eigen::MatrixXd k12(12, 12);
+    k12 << k, -k, -k, k;
+    visit(node_dofs(model, {s.node, *s.other}), k12, Eigen::MatrixXd::Zero(12, 12));
+  }
+}
+
+}  // namespace
+
+void for_each_element(const Model& model, const ElementVisitor& visit) {
+  visit_beams(model, visit);
+  visit_shells(model, visit);
+  visit_discrete(model, visit);
+}
+
+}  // namespace rigflex::fe

@@ -1,0 +1,18 @@
+#pragma once
+// Visits every element of a model with its dense matrices and the full DOF
+// indices (node_index * 6 + local DOF) they act on.
+#include <functional>
+#include <vector>
+
+#include "fe/element_matrices.hpp"
+#include "fe/model.hpp"
+
+namespace rigflex::fe {
+
+using ElementVisitor = std::function<void(const std::vector<long>& full_dofs, const Eigen::MatrixXd& K,
+                                          const Eigen::MatrixXd& M)>;
+
+// The model must be valid (Model::validate).
+void for_each_element(const Model& model, const ElementVisitor& visit);
+
+}  // namespace rigflex::fe

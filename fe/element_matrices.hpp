@@ -1,0 +1,13 @@
+#pragma once
+#include <Eigen/Dense>
+
+namespace rigflex::fe {
+
+// Dense element matrices in global axes, DOFs ordered node by node
+// [UX UY UZ RX RY RZ] (fe/dof.hpp), in the element's node order.
+struct ElementMatrices {
+  Eigen::MatrixXd K;
+  Eigen::MatrixXd M;
+};
+
+}  // namespace rigflex::fe

@@ -1,0 +1,181 @@
+#include "fe/model.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "fe/error.hpp"
+#include "fe/shell_element.hpp"
+
+namespace rigflex::fe {
+
+void ShellSection::validate() const {
+  if (!(std::isfinite(thickness) && thickness > 0.0))
+    throw ModelError({"shell_section", name, "thickness"},
+                     "shell section '" + name + "': thickness must be positive");
+}
+
+NodeId Model::add_node(NodeId id, const Vec3& x) {
+  if (index_.count(id) != 0)
+    throw ModelError({"node", std::to_string(id), "id"}, "duplicate node id " + std::to_string(id));
+  if (!x.allFinite())
+    throw ModelError({"node", std::to_string(id), "x"}, "node " + std::to_string(id) + ": non-finite coordinate");
+  index_[id] = nodes.size();
+  nodes.push_back({id, x});
+  return id;
+}
+
+NodeId Model::next_node_id() const {
+  NodeId m = 0;
+  for (const Node& n : nodes) m = std::max(m, n.id);
+  return m + 1;
+}
+
+size_t Model::node_index(NodeId id) const {
+  auto it = index_.find(id);
+  if (it == index_.end())
+    throw ModelError({"node", std::to_string(id), ""}, "node " + std::to_string(id) + " does not exist");
+  return it->second;
+}
+
+std::vector<NodeId> Model::node_set(const std::string& name) const {
+  auto it = node_sets.find(name);
+  if (it == node_sets.end()) throw ModelError({"node_set", name, ""}, "node set '" + name + "' does not exist");
+  return it->second;
+}
+
+void Model::reindex() {
+  index_.clear();
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (!index_.emplace(nodes[i].id, i).second)
+      throw ModelError({"node", std::to_string(nodes[i].id), "id"},
+                       "duplicate node id " + std::to_string(nodes[i].id));
+  }
+}
+
+namespace {
+
+void require_node(const Model& m, NodeId id, const EntityRef& where, const std::string& what) {
+  if (!m.has_node(id))
+    throw ModelError(where, what + " refers to node " + std::to_string(id) + ", which does not exist");
+}
+
+template <class Map>
+const auto& require_property(const Map& map, const std::string& name, const EntityRef& where,
+                             const std::string& what, const std::string& kind) {
+  auto it = map.find(name);
+  if (it == map.end()) throw ModelError(where, what + " refers to " + kind + " '" + name + "', which does not exist");
+  return it->second;
+}
+
+void validate_beam(const Model& m, const BeamElement& b) {
+  const EntityRef where{"beam", b.id, "nodes"};
+  const std::string what = "beam '" + b.id + "'";
+  for (NodeId n : b.nodes) require_node(m, n, where, what);
+  const auto& sec = require_property(m.beam_sections, b.section, {"beam", b.id, "section"}, what, "beam section");
+  require_property(m.materials, sec.material, {"beam_section", sec.name, "material"},
+                   "beam section '" + sec.name + "'", "material");
+  const Vec3 axis = m.position(b.nodes[1]) - m.position(b.nodes[0]);
+  const double L = axis.norm();
+  if (!(L > 0.0)) throw ModelError(where, what + " has zero length (its nodes coincide)");
+  if (b.orientation) {
+    const Vec3 v = *b.orientation;
+    if (!(v.norm() > 0.0) || v.normalized().cross(axis / L).norm() < 1e-6)
+      throw ModelError({"beam", b.id, "orientation"}, what + ": orientation vector is zero or parallel to the member");
+  }
+}
+
+void validate_shell(const Model& m, const ShellElement& s) {
+  const std::string what = "shell '" + s.id + "'";
+  if (s.nodes.size() != 4 && s.nodes.size() != 8)
+    throw ModelError({"shell", s.id, "nodes"}, what + " must have 4 or 8 nodes");
+  std::vector<Vec3> x;
+  for (NodeId n : s.nodes) {
+    require_node(m, n, {"shell", s.id, "nodes"}, what);
+    x.push_back(m.position(n));
+  }
+  const auto& sec = require_property(m.shell_sections, s.section, {"shell", s.id, "section"}, what, "shell section");
+  require_property(m.materials, sec.material, {"shell_section", sec.name, "material"},
+                   "shell section '" + sec.name + "'", "material");
+  check_shell_geometry(x, s.id);
+}
+
+void validate_point_mass(const Model& m, const PointMass& p) {
+  const std::string what = "point mass '" + p.id + "'";
+  require_node(m, p.node, {"point_mass", p.id, "node"}, what);
+  if (!(std::isfinite(p.mass) && p.mass >= 0.0))
+    throw ModelError({"point_mass", p.id, "mass"}, what + ": mass must be non-negative");
+  const auto& J = p.inertia;
+  Eigen::Matrix3d T;
+  T << J[0], J[3], J[4], J[3], J[1], J[5], J[4], J[5], J[2];
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(T);
+  const double scale = std::max(1.0, T.cwiseAbs().maxCoeff());
+  if (!T.allFinite() || es.eigenvalues().minCoeff() < -1e-12 * scale)
+    throw ModelError({"point_mass", p.id, "inertia"}, what + ": inertia tensor is not positive semi-definite");
+}
+
+void validate_spring(const Model& m, const Spring& s) {
+  const std::string what = "spring '" + s.id + "'";
+  require_node(m, s.node, {"spring", s.id, "node"}, what);
+  if (s.other) {
+    require_node(m, *s.other, {"spring", s.id, "other"}, what);
+    if (*s.other == s.node) throw ModelError({"spring", s.id, "other"}, what + " connects a node to itself");
+  }
+  for (double k : s.stiffness)
+    if (!(std::isfinite(k) && k >= 0.0))
+      throw ModelError({"spring", s.id, "stiffness"}, what + ": stiffness must be non-negative");
+  if (s.axial) {
+    if (!(std::isfinite(*s.axial) && *s.axial >= 0.0))
+      throw ModelError({"spring", s.id, "axial"}, what + ": axial stiffness must be non-negative");
+    Vec3 d = s.direction.value_or(Vec3::Zero());
+    if (!s.direction && s.other) d = m.position(*s.other) - m.position(s.node);
+    if (!(d.norm() > 0.0))
+      throw ModelError({"spring", s.id, "direction"},
+                       what + ": an axial spring needs a direction (or two distinct nodes)");
+  }
+}
+
+void validate_coupling(const Model& m, const RigidCoupling& c, std::set<NodeId>& dependents_seen) {
+  const std::string what = "rigid coupling '" + c.id + "'";
+  require_node(m, c.reference, {"coupling", c.id, "reference"}, what);
+  if (c.dependents.empty()) throw ModelError({"coupling", c.id, "nodes"}, what + " has no dependent nodes");
+  for (NodeId d : c.dependents) {
+    require_node(m, d, {"coupling", c.id, "nodes"}, what);
+    if (d == c.reference)
+      throw ModelError({"coupling", c.id, "nodes"}, what + ": the reference node is also a dependent");
+    if (!dependents_seen.insert(d).second)
+      throw ModelError({"coupling", c.id, "nodes"},
+                       what + ": node " + std::to_string(d) + " is already the dependent of another coupling");
+    // A dependent on top of its reference is a mesh error (two nodes where
+    // one was meant), not a rigid link.
+    if ((m.position(d) - m.position(c.reference)).norm() == 0.0)
+      throw ModelError({"coupling", c.id, "nodes"},
+                       what + ": dependent node " + std::to_string(d) + " coincides with the reference node");
+  }
+  bool any = false;
+  for (bool b : c.dofs) any = any || b;
+  if (!any) throw ModelError({"coupling", c.id, "dofs"}, what + " couples no DOF");
+}
+
+}  // namespace
+
+void Model::validate() const {
+  for (const auto& [name, mat] : materials) mat.validate();
+  for (const auto& [name, sec] : beam_sections) sec.validate();
+  for (const auto& [name, sec] : shell_sections) sec.validate();
+  for (const auto& b : beams) validate_beam(*this, b);
+  for (const auto& s : shells) validate_shell(*this, s);
+  for (const auto& p : point_masses) validate_point_mass(*this, p);
+  for (const auto& s : springs) validate_spring(*this, s);
+  for (const auto& s : supports) require_node(*this, s.node, {"support", s.id, "node"}, "support '" + s.id + "'");
+  std::set<NodeId> dependents;
+  for (const auto& c : couplings) validate_coupling(*this, c, dependents);
+  for (const auto& c : couplings)
+    if (dependents.count(c.reference))
+      throw ModelError({"coupling", c.id, "reference"},
+                       "rigid coupling '" + c.id + "': its reference node " + std::to_string(c.reference) +
+                           " is the dependent of another coupling (chained couplings are not supported)");
+  for (const auto& [name, ids] : node_sets)
+    for (NodeId id : ids) require_node(*this, id, {"node_set", name, ""}, "node set '" + name + "'");
+}
+
+}  // namespace rigflex::fe

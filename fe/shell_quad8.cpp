@@ -1,0 +1,146 @@
+// 8-node flat shell: serendipity membrane (3x3 Gauss) + MITC9 plate bending
+// with the centre node condensed + drilling stabilization, formed on the
+// element projected onto its mean plane.
+//
+// Why not the serendipity plate with selective (2x2 shear) integration:
+// on a non-parallelogram element the 8-node deflection field cannot
+// represent a quadratic w (x^2 of a bilinear map has a xi^2 eta^2 term), so
+// the Kirchhoff constraints cannot all be met and the element locks in the
+// thin limit (MacNeal-Harder patch, L/t = 2400: 125 % error in the constant-
+// curvature state). The bending field here is therefore the 9-node
+// Lagrangian one, which contains every quadratic on any straight-sided
+// quadrilateral, with the MITC9 assumed covariant shear strains (Bucalem &
+// Bathe 1993: gamma_r tied at r = +-1/sqrt(3), s = 0, +-sqrt(3/5), linear in
+// r and quadratic in s; gamma_s likewise), which is free of spurious modes
+// and of shear locking. The centre node's w, tx, ty are condensed out, so the
+// element keeps 8 nodes; its mass uses the 8-node shape functions (the
+// condensed centre only enriches the stiffness, as incompatible modes do).
+#include <array>
+#include <stdexcept>
+
+#include "fe/shell_common.hpp"
+#include "fe/shell_element.hpp"
+
+namespace rigflex::fe {
+namespace {
+
+using namespace shell_detail;
+
+MatrixXd membrane_stiffness(const LocalFrame& f, const ShellProperties& p) {
+  const Matrix3d C = membrane_rigidity(p);
+  MatrixXd K = MatrixXd::Zero(48, 48);
+  for (const GaussPoint& g : gauss_rule(3)) {
+    const Shape s = shape_q8(g.xi, g.eta);
+    const Matrix2d J = jacobian(s, f.xy);
+    const MatrixXd B = membrane_B(cartesian_derivatives(s, J));
+    K += g.weight * checked_det(J) * B.transpose() * C * B;
+  }
+  return K;
+}
+
+// 9-node Lagrangian shape functions; node 9 (index 8) at the centre.
+Shape shape_q9(double xi, double eta) {
+  auto l = [](double r, double c) { return c < 0 ? 0.5 * r * (r - 1) : c > 0 ? 0.5 * r * (r + 1) : 1 - r * r; };
+  auto dl = [](double r, double c) { return c < 0 ? r - 0.5 : c > 0 ? r + 0.5 : -2 * r; };
+  Shape s;
+  s.N.resize(9);
+  s.dN.resize(9, 2);
+  for (int i = 0; i < 9; ++i) {
+    const Vector2d c = node_reference_coords(i);
+    s.N(i) = l(xi, c.x()) * l(eta, c.y());
+    s.dN(i, 0) = dl(xi, c.x()) * l(eta, c.y());
+    s.dN(i, 1) = l(xi, c.x()) * dl(eta, c.y());
+  }
+  return s;
+}
+
+// The geometry stays the 8-node map; the centre node sits at its image of
+// (0, 0), so straight-sided elements get exact quadratic deflections.
+Matrix2d geometry_jacobian(const LocalFrame& f, double xi, double eta) { return jacobian(shape_q8(xi, eta), f.xy); }
+
+constexpr int kFull = 54;  // 9 nodes x 6 local DOFs
+
+// Covariant transverse shear strain along reference direction `dir` at a
+// tying point: gamma_r = w_,r + beta . x_,r, beta = (ty, -tx).
+RowVectorXd covariant_shear_row(const LocalFrame& f, double xi, double eta, int dir) {
+  const Shape s = shape_q9(xi, eta);
+  const Matrix2d J = geometry_jacobian(f, xi, eta);
+  RowVectorXd row = RowVectorXd::Zero(kFull);
+  for (int i = 0; i < 9; ++i) {
+    row(dof(i, kW)) = s.dN(i, dir);
+    row(dof(i, kTy)) = s.N(i) * J(dir, 0);
+    row(dof(i, kTx)) = -s.N(i) * J(dir, 1);
+  }
+  return row;
+}
+
+// MITC9 assumed shear: gamma_xi from the 2 x 3 points (+-a, {-b, 0, b}),
+// Lagrange-interpolated linearly in xi and quadratically in eta; gamma_eta
+// symmetrically.
+class Mitc9Shear {
+ public:
+  explicit Mitc9Shear(const LocalFrame& f) {
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j) {
+        xi_rows_[i][j] = covariant_shear_row(f, kA[i], kB[j], 0);
+        eta_rows_[i][j] = covariant_shear_row(f, kB[j], kA[i], 1);
+      }
+  }
+  // Rows [gamma_xi; gamma_eta] at a point.
+  MatrixXd covariant(double xi, double eta) const {
+    MatrixXd B = MatrixXd::Zero(2, kFull);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j) {
+        B.row(0) += linear(xi, i) * quadratic(eta, j) * xi_rows_[i][j];
+        B.row(1) += linear(eta, i) * quadratic(xi, j) * eta_rows_[i][j];
+      }
+    return B;
+  }
+
+ private:
+  static constexpr double kA[2] = {-0.57735026918962576, 0.57735026918962576};  // -+1/sqrt(3)
+  static constexpr double kB[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};  // -+sqrt(3/5)
+  static double linear(double r, int i) { return 0.5 * (1.0 + r / kA[i]); }
+  static double quadratic(double r, int j) {
+    const double b = kB[2];
+    if (j == 1) return 1.0 - r * r / (b * b);
+    return 0.5 * r * (r + (j == 0 ? -b : b)) / (b * b);
+  }
+  RowVectorXd xi_rows_[2][3], eta_rows_[2][3];
+};
+
+// Plate stiffness of the 9-node field, centre node condensed: 48 x 48 on
+// the local DOFs of the 8 element nodes (only w, tx, ty populated).
+MatrixXd bending_stiffness(const LocalFrame& f, const ShellProperties& p) {
+  const Matrix3d Db = bending_rigidity(p);
+  const double Ds = shear_rigidity(p);
+  const Mitc9Shear shear(f);
+  MatrixXd K = MatrixXd::Zero(kFull, kFull);
+  for (const GaussPoint& g : gauss_rule(3)) {
+    const Matrix2d J = geometry_jacobian(f, g.xi, g.eta);
+    const double w = g.weight * checked_det(J);
+    const MatrixXd Bb = bending_B(cartesian_derivatives(shape_q9(g.xi, g.eta), J));
+    const MatrixXd Bs = J.inverse() * shear.covariant(g.xi, g.eta);
+    K += w * (Bb.transpose() * Db * Bb + Ds * Bs.transpose() * Bs);
+  }
+  const std::array<int, 3> inner{dof(8, kW), dof(8, kTx), dof(8, kTy)};
+  MatrixXd Kbi(48, 3), Kii(3, 3);
+  for (int a = 0; a < 3; ++a) {
+    Kbi.col(a) = K.col(inner[static_cast<size_t>(a)]).head(48);
+    for (int b = 0; b < 3; ++b) Kii(a, b) = K(inner[static_cast<size_t>(a)], inner[static_cast<size_t>(b)]);
+  }
+  return K.topLeftCorner(48, 48) - Kbi * Kii.ldlt().solve(Kbi.transpose());
+}
+
+}  // namespace
+
+ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p) {
+  check_properties(p);
+  if (x.size() != 8) throw std::invalid_argument("shell_quad8: expected 8 nodes");
+  const LocalFrame f = make_local_frame(x);
+  MatrixXd K = membrane_stiffness(f, p) + bending_stiffness(f, p);
+  add_drilling_stiffness(K, f, shape_q8, p);
+  return to_global(K, shell_mass(f, shape_q8, 3, p), f);
+}
+
+}  // namespace rigflex::fe

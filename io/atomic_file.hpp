@@ -1,0 +1,28 @@
+#pragma once
+// Output files appear whole or not at all: each is written to a temporary
+// name beside its destination and renamed into place.
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace rigflex::io {
+
+// Calls write(temp_path), then renames temp_path to `target`. On any
+// exception the temporary file is removed and the exception rethrown.
+void write_atomically(const std::filesystem::path& target,
+                      const std::function<void(const std::filesystem::path&)>& write);
+void write_text_atomically(const std::filesystem::path& target, const std::string& text);
+
+// A set of files committed together: all are written to temporary names
+// first and renamed only after every one succeeded.
+class FileBatch {
+ public:
+  void add(const std::filesystem::path& target, std::function<void(const std::filesystem::path&)> write);
+  void add_text(const std::filesystem::path& target, std::string text);
+  void commit();  // throws std::runtime_error naming the file that failed
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::function<void(const std::filesystem::path&)>>> items_;
+};
+
+}  // namespace rigflex::io

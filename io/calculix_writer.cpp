@@ -1,0 +1,549 @@
+#include "io/calculix_writer.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "fe/beam_element.hpp"
+#include "io/atomic_file.hpp"
+
+extern char** environ;
+
+namespace rigflex::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Shortest round-trip text of a double ("0.25", "2.1e+11").
+std::string num(double v) {
+  std::array<char, 32> buf{};
+  auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  return std::string(buf.data(), r.ptr);
+}
+
+std::string vec_text(const fe::Vec3& v) { return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()); }
+
+[[noreturn]] void unsupported(const std::string& what) {
+  throw std::invalid_argument("CalculiX export: " + what);
+}
+
+// Writes ids 16 per line (ccx's limit for set and element continuation lines).
+void id_lines(std::string& out, const std::vector<long>& ids) {
+  for (size_t i = 0; i < ids.size(); ++i) {
+    out += std::to_string(ids[i]);
+    out += (i + 1 == ids.size() || (i + 1) % 16 == 0) ? "\n" : ", ";
+  }
+}
+
+class InputWriter {
+ public:
+  InputWriter(const fe::Model& m, const CalculixOptions& opt) : m_(m), opt_(opt) {}
+
+  std::string write() {
+    m_.validate();
+    opt_.validate();
+    number_nodes();
+    mark_element_nodes();
+    check_unsupported();
+
+    out_.reserve(m_.nodes.size() * 80 + m_.shells.size() * 60 + 4096);
+    out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (io/calculix_writer.cpp).\n";
+    out_ += "** Beams are B32R, MITC4 shells S4, 8-node shells S8R; ccx expands them into\n";
+    out_ += "** C3D20R / C3D8I solids internally.\n";
+    if (!opt_.heading.empty()) out_ += "*HEADING\n" + opt_.heading + "\n";
+    write_nodes();
+    write_beams();
+    write_shells();
+    write_materials();
+    write_point_masses();
+    write_springs();
+    write_couplings();
+    write_boundaries();
+    out_ += "*STEP\n*FREQUENCY\n" + std::to_string(opt_.modes) + "\n";
+    if (opt_.write_node_file) out_ += "*NODE FILE\nU\n";
+    out_ += "*END STEP\n";
+    return std::move(out_);
+  }
+
+ private:
+  // ---- numbering -------------------------------------------------------
+  void number_nodes() {
+    // rigflex ids are kept when they are valid ccx node numbers; generated
+    // nodes (beam mid nodes, rotation nodes, spring anchors) follow the
+    // largest id.
+    bool keep = true;
+    for (const fe::Node& n : m_.nodes) keep = keep && n.id >= 1 && n.id < 100000000;
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+      ccx_id_[m_.nodes[i].id] = keep ? m_.nodes[i].id : static_cast<long>(i + 1);
+    next_node_ = 1;
+    for (const auto& [id, c] : ccx_id_) next_node_ = std::max(next_node_, c + 1);
+  }
+  long id(fe::NodeId n) const { return ccx_id_.at(n); }
+  long new_node(const fe::Vec3& x) {
+    extra_nodes_.push_back({next_node_, x});
+    return next_node_++;
+  }
+
+  void mark_element_nodes() {
+    for (const auto& b : m_.beams)
+      for (fe::NodeId n : b.nodes) element_node_.insert(n);
+    for (const auto& s : m_.shells)
+      for (fe::NodeId n : s.nodes) element_node_.insert(n);
+  }
+  bool in_elements(fe::NodeId n) const { return element_node_.count(n) != 0; }
+
+  void check_unsupported() {
+    for (const auto& [name, sec] : m_.beam_sections) {
+      if (sec.shape == fe::SectionShape::ISection)
+        unsupported("beam section '" + name +
+                    "' is an I-section; ccx 2.20 *BEAM SECTION supports RECT, CIRC, PIPE and BOX only");
+      if (sec.shape == fe::SectionShape::General)
+        unsupported("beam section '" + name +
+                    "' is a general section (A, Iy, Iz, J); ccx 2.20 offers SECTION=GENERAL only for the "
+                    "U1 user element, not for B32R");
+    }
+    for (const auto& p : m_.point_masses)
+      for (double j : p.inertia)
+        if (j != 0.0)
+          unsupported("point mass '" + p.id +
+                      "' has rotary inertia; ccx 2.20 MASS elements carry translational mass only");
+    for (const auto& s : m_.springs)
+      for (int d = 3; d < 6; ++d)
+        if (s.stiffness[static_cast<size_t>(d)] != 0.0)
+          unsupported("spring '" + s.id + "' has a rotational stiffness; only translational springs are exported");
+    for (const auto& c : m_.couplings)
+      for (bool b : c.dofs)
+        if (!b)
+          unsupported("rigid coupling '" + c.id +
+                      "' couples only some DOFs; only couplings of all six DOFs are exported (*RIGID BODY)");
+  }
+
+  // ---- nodes -----------------------------------------------------------
+  void write_nodes() {
+    // Mid nodes of the B32R elements first, so that every generated node
+    // exists before the *NODE block is written.
+    for (const auto& b : m_.beams)
+      beam_mid_.push_back(new_node(0.5 * (m_.position(b.nodes[0]) + m_.position(b.nodes[1]))));
+    for (const auto& c : m_.couplings) rot_node_.push_back(new_node(m_.position(c.reference)));
+    for (const auto& s : m_.springs)
+      if (s.axial && *s.axial != 0.0 && !s.other) anchor_.push_back(new_node(m_.position(s.node) + s.direction->normalized()));
+      else anchor_.push_back(0);
+
+    out_ += "*NODE, NSET=NALL\n";
+    for (const fe::Node& n : m_.nodes) out_ += std::to_string(id(n.id)) + ", " + vec_text(n.x) + "\n";
+    for (const auto& [k, x] : extra_nodes_) out_ += std::to_string(k) + ", " + vec_text(x) + "\n";
+  }
+
+  // ---- materials (a zero-density copy for massless elements) -------------
+  std::string material_name(const std::string& material, bool massless) {
+    const auto key = std::make_pair(material, massless);
+    auto it = material_names_.find(key);
+    if (it != material_names_.end()) return it->second;
+    const std::string name = "M" + std::to_string(material_names_.size() + 1);
+    material_names_[key] = name;
+    return name;
+  }
+  void write_materials() {
+    for (const auto& [key, name] : material_names_) {
+      const fe::Material& mat = m_.materials.at(key.first);
+      out_ += "** material '" + key.first + "'" + (key.second ? " (massless elements)" : "") + "\n";
+      out_ += "*MATERIAL, NAME=" + name + "\n*ELASTIC\n" + num(mat.E) + ", " + num(mat.nu) + "\n";
+      out_ += "*DENSITY\n" + num(key.second ? 0.0 : mat.rho) + "\n";
+    }
+  }
+
+  // ---- beams -------------------------------------------------------------
+  void write_beams() {
+    // One element set per (section, mass kind, 1-direction).
+    struct Group {
+      std::string section;
+      bool massless = false;
+      fe::Vec3 n1;
+      std::vector<size_t> beams;
+    };
+    std::map<std::string, Group> groups;
+    for (size_t i = 0; i < m_.beams.size(); ++i) {
+      const fe::BeamElement& b = m_.beams[i];
+      const Eigen::Matrix3d R =
+          fe::beam_local_axes(m_.position(b.nodes[0]), m_.position(b.nodes[1]), b.orientation);
+      const fe::Vec3 n1 = R.row(1).transpose();  // ccx n1 = rigflex local y, so n2 = t x n1 = local z
+      const bool massless = b.mass == fe::MassKind::None;
+      const std::string key = b.section + "|" + (massless ? "0" : "1") + "|" + vec_text(n1);
+      Group& g = groups[key];
+      g.section = b.section;
+      g.massless = massless;
+      g.n1 = n1;
+      g.beams.push_back(i);
+    }
+    int k = 0;
+    for (const auto& [key, g] : groups) {
+      const std::string elset = "EB" + std::to_string(++k);
+      out_ += "** beam section '" + g.section + "'\n*ELEMENT, TYPE=B32R, ELSET=" + elset + "\n";
+      for (size_t i : g.beams) {
+        const fe::BeamElement& b = m_.beams[i];
+        out_ += std::to_string(++element_) + ", " + std::to_string(id(b.nodes[0])) + ", " +
+                std::to_string(beam_mid_[i]) + ", " + std::to_string(id(b.nodes[1])) + "\n";
+      }
+      const fe::BeamSection& s = m_.beam_sections.at(g.section);
+      const std::string mat = material_name(s.material, g.massless);
+      std::string kind, dims;
+      switch (s.shape) {
+        case fe::SectionShape::Rectangle:
+          kind = "RECT";
+          dims = num(s.width) + ", " + num(s.height);
+          break;
+        case fe::SectionShape::Circle:
+          kind = "CIRC";
+          dims = num(s.diameter) + ", " + num(s.diameter);
+          break;
+        case fe::SectionShape::Tube:
+          kind = "PIPE";
+          dims = num(0.5 * s.diameter) + ", " + num(s.wall);
+          break;
+        case fe::SectionShape::Box: {
+          kind = "BOX";
+          const double tw = s.web_thickness > 0 ? s.web_thickness : s.wall;      // walls at +-y (n1)
+          const double tf = s.flange_thickness > 0 ? s.flange_thickness : s.wall;  // walls at +-z (n2)
+          dims = num(s.width) + ", " + num(s.height) + ", " + num(tw) + ", " + num(tf) + ", " + num(tw) + ", " +
+                 num(tf);
+          break;
+        }
+        default:
+          unsupported("beam section '" + g.section + "' has no ccx equivalent");
+      }
+      out_ += "*BEAM SECTION, ELSET=" + elset + ", MATERIAL=" + mat + ", SECTION=" + kind + "\n" + dims + "\n" +
+              vec_text(g.n1) + "\n";
+    }
+  }
+
+  // ---- shells ------------------------------------------------------------
+  void write_shells() {
+    struct Group {
+      std::string section;
+      bool massless = false, quad8 = false;
+      std::vector<size_t> shells;
+    };
+    std::map<std::tuple<std::string, bool, bool>, Group> groups;
+    for (size_t i = 0; i < m_.shells.size(); ++i) {
+      const fe::ShellElement& s = m_.shells[i];
+      const bool massless = s.mass == fe::MassKind::None;
+      const bool quad8 = s.formulation() == fe::ShellFormulation::Quad8;
+      Group& g = groups[{s.section, massless, quad8}];
+      g.section = s.section;
+      g.massless = massless;
+      g.quad8 = quad8;
+      g.shells.push_back(i);
+    }
+    int k = 0;
+    for (const auto& [key, g] : groups) {
+      const std::string elset = "ES" + std::to_string(++k);
+      out_ += "** shell section '" + g.section + "'\n*ELEMENT, TYPE=" + std::string(g.quad8 ? "S8R" : "S4") +
+              ", ELSET=" + elset + "\n";
+      for (size_t i : g.shells) {
+        out_ += std::to_string(++element_);
+        // rigflex's node order (corners counter-clockwise, then mid-sides
+        // 1-2, 2-3, 3-4, 4-1) is ccx's S4 / S8 order.
+        for (fe::NodeId n : m_.shells[i].nodes) out_ += ", " + std::to_string(id(n));
+        out_ += "\n";
+      }
+      const fe::ShellSection& s = m_.shell_sections.at(g.section);
+      out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless) + "\n" +
+              num(s.thickness) + "\n";
+    }
+  }
+
+  // ---- point masses ---------------------------------------------------------
+  void write_point_masses() {
+    int k = 0;
+    for (const auto& p : m_.point_masses) {
+      if (p.mass == 0.0) continue;
+      const std::string elset = "EM" + std::to_string(++k);
+      out_ += "** point mass '" + p.id + "'\n*ELEMENT, TYPE=MASS, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(id(p.node)) + "\n";
+      out_ += "*MASS, ELSET=" + elset + "\n" + num(p.mass) + "\n";
+    }
+  }
+
+  // ---- springs ---------------------------------------------------------------
+  void write_springs() {
+    int k = 0;
+    for (size_t i = 0; i < m_.springs.size(); ++i) {
+      const fe::Spring& s = m_.springs[i];
+      for (int d = 0; d < 3; ++d) {
+        const double kd = s.stiffness[static_cast<size_t>(d)];
+        if (kd == 0.0) continue;
+        const std::string elset = "EK" + std::to_string(++k);
+        if (s.other) {
+          out_ += "** spring '" + s.id + "'\n*ELEMENT, TYPE=SPRING2, ELSET=" + elset + "\n" +
+                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + ", " +
+                  std::to_string(id(*s.other)) + "\n";
+          out_ += "*SPRING, ELSET=" + elset + "\n" + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n" +
+                  num(kd) + "\n";
+        } else {
+          out_ += "** spring '" + s.id + "'\n*ELEMENT, TYPE=SPRING1, ELSET=" + elset + "\n" +
+                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + "\n";
+          out_ += "*SPRING, ELSET=" + elset + "\n" + std::to_string(d + 1) + "\n" + num(kd) + "\n";
+        }
+      }
+      if (!s.axial || *s.axial == 0.0) continue;
+      long a = id(s.node), b = 0;
+      if (s.other) {
+        b = id(*s.other);
+        const fe::Vec3 line = m_.position(*s.other) - m_.position(s.node);
+        if (s.direction && line.norm() > 0 &&
+            line.normalized().cross(s.direction->normalized()).norm() > 1e-9)
+          unsupported("spring '" + s.id +
+                      "': an axial spring between two nodes along a direction other than the line between "
+                      "them has no ccx element (SPRINGA acts along the line)");
+        if (line.norm() == 0.0)
+          unsupported("spring '" + s.id + "': an axial spring between coincident nodes has no ccx element");
+      } else {
+        b = anchor_[i];  // clamped below
+        anchored_.push_back(b);
+      }
+      const std::string elset = "EK" + std::to_string(++k);
+      out_ += "** axial spring '" + s.id + "'\n*ELEMENT, TYPE=SPRINGA, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(a) + ", " + std::to_string(b) + "\n";
+      out_ += "*SPRING, ELSET=" + elset + "\n\n" + num(*s.axial) + "\n";
+    }
+  }
+
+  // ---- rigid couplings -------------------------------------------------------
+  void write_couplings() {
+    for (size_t i = 0; i < m_.couplings.size(); ++i) {
+      const fe::RigidCoupling& c = m_.couplings[i];
+      const std::string nset = "RB" + std::to_string(i + 1);
+      const long rot = rot_node_[i];
+      out_ += "** rigid coupling '" + c.id + "'\n*NSET, NSET=" + nset + "\n";
+      std::vector<long> ids;
+      for (fe::NodeId d : c.dependents) ids.push_back(id(d));
+      id_lines(out_, ids);
+      out_ += "*RIGID BODY, NSET=" + nset + ", REF NODE=" + std::to_string(id(c.reference)) +
+              ", ROT NODE=" + std::to_string(rot) + "\n";
+      // ccx ties only the translations of beam and shell nodes in a rigid
+      // body; their rotations follow the rigid body's through the ROT NODE.
+      std::vector<fe::NodeId> tied;
+      for (fe::NodeId d : c.dependents)
+        if (in_elements(d)) tied.push_back(d);
+      if (in_elements(c.reference)) tied.push_back(c.reference);
+      if (!tied.empty()) {
+        out_ += "*EQUATION\n";
+        for (fe::NodeId n : tied)
+          for (int r = 1; r <= 3; ++r)
+            out_ += "2\n" + std::to_string(id(n)) + ", " + std::to_string(r + 3) + ", 1., " + std::to_string(rot) +
+                    ", " + std::to_string(r) + ", -1.\n";
+      }
+      rot_of_reference_[c.reference] = rot;
+    }
+  }
+
+  // ---- supports ----------------------------------------------------------------
+  void write_boundaries() {
+    std::string b;
+    for (const fe::Support& s : m_.supports) {
+      const long n = id(s.node);
+      const auto rot = rot_of_reference_.find(s.node);
+      for (int d = 0; d < 6; ++d) {
+        if (!s.fixed[static_cast<size_t>(d)]) continue;
+        if (d < 3) {
+          b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
+        } else if (rot != rot_of_reference_.end() && !in_elements(s.node)) {
+          // rotation of a coupling reference outside any element: the
+          // rigid body's rotation lives in the ROT NODE's translations
+          b += std::to_string(rot->second) + ", " + std::to_string(d - 2) + ", " + std::to_string(d - 2) + "\n";
+        } else if (in_elements(s.node)) {
+          b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
+        }
+        // else: a rotation nothing stiffens (rigflex drops it as unused)
+      }
+    }
+    for (long a : anchored_) b += std::to_string(a) + ", 1, 3\n";
+    if (!b.empty()) out_ += "*BOUNDARY\n" + b;
+  }
+
+  const fe::Model& m_;
+  const CalculixOptions& opt_;
+  std::string out_;
+  std::unordered_map<fe::NodeId, long> ccx_id_;
+  std::unordered_set<fe::NodeId> element_node_;
+  long next_node_ = 1;
+  long element_ = 0;
+  std::vector<std::pair<long, fe::Vec3>> extra_nodes_;
+  std::vector<long> beam_mid_, rot_node_, anchor_, anchored_;
+  std::map<fe::NodeId, long> rot_of_reference_;
+  std::map<std::pair<std::string, bool>, std::string> material_names_;
+};
+
+}  // namespace
+
+void CalculixOptions::validate() const {
+  if (modes < 1) throw std::invalid_argument("CalculixOptions::modes must be at least 1");
+  if (heading.find('\n') != std::string::npos)
+    throw std::invalid_argument("CalculixOptions::heading must be a single line");
+}
+
+std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) {
+  return InputWriter(model, opt).write();
+}
+
+void parse_calculix_eigenvalues(const std::string& dat_text, std::vector<double>& eigenvalues,
+                                std::vector<double>& frequencies_hz) {
+  eigenvalues.clear();
+  frequencies_hz.clear();
+  const auto at = dat_text.find("E I G E N V A L U E   O U T P U T");
+  if (at == std::string::npos) throw std::runtime_error("no eigenvalue table (E I G E N V A L U E   O U T P U T)");
+  std::istringstream in(dat_text.substr(at));
+  std::string line;
+  std::getline(in, line);  // the title
+  // Header lines, then rows "mode  eigenvalue  rad/time  cycles/time  imag";
+  // the table ends at the first line that is not such a row.
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    long mode = 0;
+    double lambda = 0, omega = 0, f = 0, imag = 0;
+    if (row >> mode >> lambda >> omega >> f >> imag) {
+      eigenvalues.push_back(lambda);
+      frequencies_hz.push_back(f);
+    } else if (!eigenvalues.empty()) {
+      break;
+    }
+  }
+  if (eigenvalues.empty()) throw std::runtime_error("the eigenvalue table has no rows");
+}
+
+bool calculix_available(const std::string& executable) {
+  if (executable.find('/') != std::string::npos) return ::access(executable.c_str(), X_OK) == 0;
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::istringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    if (::access((fs::path(dir) / executable).c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+namespace {
+
+std::string tail_of(const fs::path& file, size_t chars) {
+  std::ifstream in(file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.size() > chars ? "..." + text.substr(text.size() - chars) : text;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Runs argv in `dir` with stdout and stderr to `log`; returns the exit
+// status and fills the child's resource usage. Throws if it cannot start.
+int run_child(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
+              const std::vector<std::string>& extra_env, struct rusage& usage) {
+  std::vector<std::string> env_store;
+  for (char** e = environ; e && *e; ++e) {
+    const std::string kv(*e);
+    const std::string key = kv.substr(0, kv.find('='));
+    bool overridden = false;
+    for (const std::string& x : extra_env) overridden = overridden || x.substr(0, x.find('=')) == key;
+    if (!overridden) env_store.push_back(kv);
+  }
+  for (const std::string& x : extra_env) env_store.push_back(x);
+  std::vector<char*> envp, args;
+  for (auto& s : env_store) envp.push_back(s.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> argv_store = argv;
+  for (auto& s : argv_store) args.push_back(s.data());
+  args.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  const std::string log_path = fs::absolute(log).string();
+  posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(rc));
+  int status = 0;
+  while (::wait4(pid, &status, 0, &usage) < 0) {
+    if (errno != EINTR) throw std::runtime_error("waiting for " + argv[0] + " failed: " + std::strerror(errno));
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+}  // namespace
+
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir) {
+  return run_calculix_frequencies(model, count, work_dir, CalculixRunOptions{});
+}
+
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir,
+                                             const CalculixRunOptions& run) {
+  if (run.job.empty() || run.job.find('/') != std::string::npos)
+    throw std::invalid_argument("CalculixRunOptions::job must be a plain file name");
+  if (run.threads < 0) throw std::invalid_argument("CalculixRunOptions::threads must be non-negative");
+  CalculixOptions opt;
+  opt.modes = count;
+  opt.heading = "rigflex cross-check";
+  fs::create_directories(work_dir);
+  CalculixFrequencies r;
+  r.input = work_dir / (run.job + ".inp");
+  r.dat = work_dir / (run.job + ".dat");
+  r.log = work_dir / (run.job + ".log");
+
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  write_text_atomically(r.input, calculix_input(model, opt));
+  r.write_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  std::error_code ec;
+  fs::remove(r.dat, ec);  // never read a stale table
+
+  std::vector<std::string> env;
+  if (run.threads > 0) {
+    const std::string t = std::to_string(run.threads);
+    for (const char* key : {"OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
+                            "CCX_NPROC_RESULTS", "OPENBLAS_NUM_THREADS"})
+      env.push_back(std::string(key) + "=" + t);
+  }
+  struct rusage usage {};
+  t0 = clock::now();
+  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, env, usage);
+  r.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  r.max_rss_kb = usage.ru_maxrss;
+
+  const std::string dat = read_text(r.dat);
+  try {
+    if (status != 0) throw std::runtime_error("exit status " + std::to_string(status));
+    parse_calculix_eigenvalues(dat, r.eigenvalues, r.frequencies_hz);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("CalculiX run in " + work_dir.string() + " failed (" + e.what() + "); see " +
+                             r.log.string() + ":\n" + tail_of(r.log, 1500));
+  }
+  return r;
+}
+
+}  // namespace rigflex::io

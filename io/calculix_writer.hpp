@@ -1,0 +1,117 @@
+#pragma once
+// CalculiX (ccx 2.20) input for a *FREQUENCY analysis of a frame model, and a
+// runner that calls `ccx` on it and reads the eigenvalue table back: the
+// independent cross-check of rigflex's elements, assembly and eigen solver.
+//
+// How the model maps onto ccx:
+//   beams      -> B32R (3 nodes: a mid node is generated at each midpoint).
+//                 ccx has no true beam element: it expands every B32(R) into
+//                 a 20-node brick (C3D20R for B32R) over the section's
+//                 bounding rectangle, and models PIPE and BOX sections by
+//                 placing integration points on the walls. Reduced
+//                 integration (B32R rather than B32/C3D20) is what ccx
+//                 requires for PIPE and BOX and avoids the stiff fully
+//                 integrated brick in bending; B31 is not used because
+//                 ccx's linear beam (C3D8I expansion) refuses CIRC sections.
+//   sections   -> *BEAM SECTION RECT, CIRC, PIPE, BOX. I-sections and
+//                 general sections (A, Iy, Iz, J) have no ccx 2.20 *BEAM
+//                 SECTION equivalent for B32R (GENERAL only serves the U1
+//                 user element): std::invalid_argument naming the section.
+//   orientation-> ccx's 1-direction n1 is given on the third line of *BEAM
+//                 SECTION and its 2-direction is n2 = t x n1 (t: the beam
+//                 tangent). rigflex's local axes are ex = t, ey = up x ex,
+//                 ez = ex x ey with width along ey and height along ez
+//                 (fe::beam_local_axes). Writing n1 = ey gives n2 = ex x ey
+//                 = ez, so "thickness in 1-direction" = width and
+//                 "thickness in 2-direction" = height; for BOX (a, b, t1..t4
+//                 with t1 the wall at +n1, t2 at +n2, t3 at -n1, t4 at -n2)
+//                 a = width, b = height, t1 = t3 = web, t2 = t4 = flange.
+//   shells     -> MITC4: S4 (expanded by ccx into a C3D8I brick, fully
+//                 integrated with incompatible modes, so it neither locks in
+//                 bending nor shows the hourglass modes of S4R/C3D8R with one
+//                 element through the thickness). 8-node shells: S8R
+//                 (C3D20R; ccx's recommended shell; S8/C3D20 locks in thin
+//                 bending).
+//   materials  -> *MATERIAL, *ELASTIC, *DENSITY; elements with
+//                 MassKind::None get a zero-density copy of their material.
+//                 Lumped beam/shell mass is written as ccx's consistent mass.
+//   supports   -> *BOUNDARY (rotations of beam/shell nodes are constrained
+//                 by ccx through a "knot" or a mean-rotation MPC).
+//   couplings  -> *RIGID BODY, NSET=dependents, REF NODE=reference, ROT NODE=
+//                 generated node; because ccx ties only translations of beam
+//                 and shell nodes in a rigid body, the rotations of such
+//                 dependents (and of a reference that belongs to beams or
+//                 shells) are tied to the ROT NODE by *EQUATION, which makes
+//                 the coupling a full RBE2 like rigflex's. Only couplings of
+//                 all six DOFs are supported (std::invalid_argument).
+//   point mass -> MASS element; CalculiX 2.20 has no rotary inertia for MASS
+//                 elements, so a nonzero inertia throws std::invalid_argument.
+//   springs    -> SPRING1 (to ground) / SPRING2 (node to node) per
+//                 translational DOF, SPRINGA for axial springs (to ground
+//                 along `direction` through a generated clamped node).
+//                 Rotational spring stiffnesses throw std::invalid_argument.
+//
+// Because ccx solves a 3D solid (C3D20R / C3D8I) model of every beam and
+// shell, its frequencies differ from rigflex's beam and shell theory by the
+// modelling: shear and warping of the solid section, St-Venant torsion of the
+// expanded rectangle instead of the section's torsion constant J (thin-walled
+// BOX/PIPE torsion is only approximated), and rigid "knots" where members
+// meet at an angle. Tolerances against rigflex must account for that; see
+// tests/io/test_calculix_crosscheck.cpp.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fe/model.hpp"
+
+namespace rigflex::io {
+
+struct CalculixOptions {
+  int modes = 10;             // eigenfrequencies requested from *FREQUENCY
+  std::string heading;        // *HEADING text (optional)
+  bool write_node_file = true;  // *NODE FILE U: mode shapes in job.frd
+  // Throws std::invalid_argument naming the offending option.
+  void validate() const;
+};
+
+// The complete .inp text. Throws fe::ModelError for an invalid model and
+// std::invalid_argument (naming the entity) for model content that ccx 2.20
+// cannot express (see above).
+std::string calculix_input(const fe::Model& model, const CalculixOptions& opt);
+
+struct CalculixFrequencies {
+  std::vector<double> eigenvalues;     // (rad/s)^2, as ccx prints them
+  std::vector<double> frequencies_hz;  // ccx's "real part, cycles/time" column
+  double wall_seconds = 0.0;           // the ccx process alone (not writing the .inp)
+  double write_seconds = 0.0;          // writing job.inp
+  long max_rss_kb = 0;                 // peak resident set of the ccx process (wait4)
+  std::filesystem::path input, dat, log;
+};
+
+struct CalculixRunOptions {
+  std::string executable = "ccx";  // looked up on PATH
+  std::string job = "job";
+  // > 0: sets OMP_NUM_THREADS and CCX_NPROC_* for the child; 0: inherit.
+  int threads = 0;
+};
+
+// Writes <work_dir>/job.inp, runs `ccx -i job` in work_dir (stdout and
+// stderr to job.log), parses the eigenvalue table of job.dat. Throws
+// std::runtime_error (with the tail of ccx's output) if ccx cannot be
+// started, fails, or prints no eigenvalue table; the error names job.log.
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count,
+                                             const std::filesystem::path& work_dir);
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count,
+                                             const std::filesystem::path& work_dir,
+                                             const CalculixRunOptions& run);
+
+// Parses the "E I G E N V A L U E   O U T P U T" table of a ccx .dat text
+// (exposed for tests). Throws std::runtime_error if there is none.
+void parse_calculix_eigenvalues(const std::string& dat_text, std::vector<double>& eigenvalues,
+                                std::vector<double>& frequencies_hz);
+
+// True if `executable` is found on PATH (or is an existing path).
+bool calculix_available(const std::string& executable = "ccx");
+
+}  // namespace rigflex::io

@@ -1,0 +1,516 @@
+#include "io/model_reader.hpp"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "fe/dof.hpp"
+#include "fe/error.hpp"
+#include "fe/meshers.hpp"
+#include "io/yaml_fields.hpp"
+
+namespace rigflex::io {
+namespace {
+
+using fe::NodeId;
+using fe::Vec3;
+
+constexpr double kNodeTolerance = 1e-6;  // [m] for `at:` references and mesher merging
+
+// Where each entity was defined, so that semantic errors found by
+// fe::Model::validate can point at a line.
+class SourceMap {
+ public:
+  void add(const std::string& kind, const std::string& id, const YAML::Node& n) { lines_[kind + "\n" + id] = n; }
+  YAML::Node find(const fe::EntityRef& e) const {
+    auto it = lines_.find(e.kind + "\n" + e.id);
+    if (it == lines_.end()) return YAML::Node();
+    if (!e.key.empty() && it->second.IsMap() && it->second[e.key].IsDefined()) return it->second[e.key];
+    return it->second;
+  }
+
+ private:
+  std::map<std::string, YAML::Node> lines_;
+};
+
+class Reader {
+ public:
+  Reader(const YamlContext& ctx, fe::Model& model, SourceMap& src) : c_(ctx), m_(model), src_(src) {}
+
+  void read(const YAML::Node& root) {
+    c_.expect_map(root, "model file",
+                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets",
+                   "beams", "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame",
+                   "point_masses", "springs", "supports", "couplings"});
+    each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
+    each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
+    each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
+    each_item(root, "nodes", [&](const YAML::Node& v) { node(v); });
+    each_item(root, "beams", [&](const YAML::Node& v) { beam(v); });
+    each_item(root, "shells", [&](const YAML::Node& v) { shell(v); });
+    each_item(root, "members", [&](const YAML::Node& v) { member(v); });
+    each_item(root, "shell_patches", [&](const YAML::Node& v) { patch(v); });
+    each_item(root, "box_girders", [&](const YAML::Node& v) { box_girder(v); });
+    if (root["fixed_frame"].IsDefined()) fixed_frame(root["fixed_frame"]);
+    if (root["carrying_frame"].IsDefined()) carrying_frame(root["carrying_frame"]);
+    each_entry(root, "node_sets", [&](const std::string& n, const YAML::Node& v) { node_set(n, v); });
+    each_item(root, "point_masses", [&](const YAML::Node& v) { point_mass(v); });
+    each_item(root, "springs", [&](const YAML::Node& v) { spring(v); });
+    each_item(root, "supports", [&](const YAML::Node& v) { support(v); });
+    each_item(root, "couplings", [&](const YAML::Node& v) { coupling(v); });
+  }
+
+ private:
+  template <class F>
+  void each_item(const YAML::Node& root, const std::string& key, F f) {
+    const YAML::Node list = root[key];
+    if (!list.IsDefined()) return;
+    c_.expect_sequence(list, key);
+    for (size_t i = 0; i < list.size(); ++i) {
+      index_ = key + "[" + std::to_string(i + 1) + "]";
+      f(list[i]);
+    }
+  }
+  template <class F>
+  void each_entry(const YAML::Node& root, const std::string& key, F f) {
+    const YAML::Node map = root[key];
+    if (!map.IsDefined()) return;
+    if (!map.IsMap()) c_.fail(map, key, "expected a mapping of names to definitions");
+    for (const auto& kv : map) f(kv.first.as<std::string>(), kv.second);
+  }
+  std::string id_or_index(const YAML::Node& n) { return c_.text_or(n, "id", index_); }
+
+  fe::MassKind mass_kind(const YAML::Node& n) {
+    const std::string s = c_.text_or(n, "mass", "consistent");
+    if (s == "consistent") return fe::MassKind::Consistent;
+    if (s == "lumped") return fe::MassKind::Lumped;
+    if (s == "none") return fe::MassKind::None;
+    c_.fail(n["mass"], "mass", "expected consistent, lumped or none");
+  }
+  fe::BeamTheory theory(const YAML::Node& n) {
+    const std::string s = c_.text_or(n, "theory", "timoshenko");
+    if (s == "timoshenko") return fe::BeamTheory::Timoshenko;
+    if (s == "euler-bernoulli") return fe::BeamTheory::EulerBernoulli;
+    c_.fail(n["theory"], "theory", "expected timoshenko or euler-bernoulli");
+  }
+  bool quadratic(const YAML::Node& n) {
+    const std::string s = c_.text_or(n, "order", "linear");
+    if (s != "linear" && s != "quadratic") c_.fail(n["order"], "order", "expected linear (MITC4) or quadratic (8-node)");
+    return s == "quadratic";
+  }
+  std::pair<int, int> pair_of_ints(const YAML::Node& n, const std::string& key) {
+    const YAML::Node v = c_.required(n, key);
+    if (!v.IsSequence() || v.size() != 2) c_.fail(v, key, "expected two integers [n1, n2]");
+    return {static_cast<int>(c_.as_integer(v[0], key)), static_cast<int>(c_.as_integer(v[1], key))};
+  }
+  std::vector<Vec3> points(const YAML::Node& n, const std::string& key, bool required = true) {
+    const YAML::Node v = n[key];
+    if (!v.IsDefined()) {
+      if (required) c_.required(n, key);
+      return {};
+    }
+    c_.expect_sequence(v, key);
+    std::vector<Vec3> out;
+    for (const auto& p : v) out.push_back(c_.as_vec3(p, key));
+    return out;
+  }
+
+  // A node named by id (`key`) or by position (`key_at`).
+  NodeId node_ref(const YAML::Node& n, const std::string& key, const std::string& key_at) {
+    const bool by_id = n[key].IsDefined(), by_pos = n[key_at].IsDefined();
+    if (by_id == by_pos) c_.fail(n, key, "give exactly one of '" + key + "' (node id) and '" + key_at + "' (position)");
+    if (by_id) return existing_node(n[key], key);
+    return node_at(n[key_at], key_at);
+  }
+  NodeId existing_node(const YAML::Node& v, const std::string& key) {
+    const NodeId id = c_.as_integer(v, key);
+    if (!m_.has_node(id)) c_.fail(v, key, "node " + std::to_string(id) + " does not exist");
+    return id;
+  }
+  NodeId node_at(const YAML::Node& v, const std::string& key) {
+    const Vec3 x = c_.as_vec3(v, key);
+    fe::NodeMerger merger(m_, kNodeTolerance);
+    if (auto id = merger.find(x)) return *id;
+    c_.fail(v, key, "no node within 1e-6 m of this position");
+  }
+  // Nodes named by `nodes: [ids]`, `set: name` or `box: [[min], [max]]`.
+  std::vector<NodeId> node_list(const YAML::Node& n, const std::string& nodes_key = "nodes") {
+    const int given = n[nodes_key].IsDefined() + n["set"].IsDefined() + n["box"].IsDefined() + n["node"].IsDefined() +
+                      n["at"].IsDefined();
+    if (given != 1) c_.fail(n, nodes_key, "give exactly one of '" + nodes_key + "', 'node', 'at', 'set' or 'box'");
+    std::vector<NodeId> out;
+    if (n["node"].IsDefined() || n["at"].IsDefined()) {
+      out.push_back(node_ref(n, "node", "at"));
+    } else if (n[nodes_key].IsDefined()) {
+      c_.expect_sequence(n[nodes_key], nodes_key);
+      for (const auto& v : n[nodes_key]) out.push_back(existing_node(v, nodes_key));
+    } else if (n["set"].IsDefined()) {
+      const std::string name = c_.text(n, "set");
+      auto it = m_.node_sets.find(name);
+      if (it == m_.node_sets.end()) c_.fail(n["set"], "set", "node set '" + name + "' does not exist");
+      out = it->second;
+    } else {
+      const YAML::Node b = n["box"];
+      if (!b.IsSequence() || b.size() != 2) c_.fail(b, "box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
+      const Vec3 lo = c_.as_vec3(b[0], "box"), hi = c_.as_vec3(b[1], "box");
+      for (const fe::Node& node : m_.nodes)
+        if ((node.x.array() >= lo.array() - kNodeTolerance).all() && (node.x.array() <= hi.array() + kNodeTolerance).all())
+          out.push_back(node.id);
+      if (out.empty()) c_.fail(b, "box", "no node inside the box");
+    }
+    return out;
+  }
+  fe::DofMask dofs(const YAML::Node& n, const std::string& key, fe::DofMask fallback) {
+    const YAML::Node v = n[key];
+    if (!v.IsDefined()) return fallback;
+    if (v.IsScalar()) {
+      const std::string s = v.as<std::string>();
+      if (s == "all") return {true, true, true, true, true, true};
+      if (s == "translations") return {true, true, true, false, false, false};
+      if (s == "rotations") return {false, false, false, true, true, true};
+      c_.fail(v, key, "expected all, translations, rotations or a list of UX UY UZ RX RY RZ");
+    }
+    c_.expect_sequence(v, key);
+    fe::DofMask mask{};
+    for (const auto& d : v) {
+      const std::string s = d.IsScalar() ? d.as<std::string>() : "";
+      bool found = false;
+      for (int k = 0; k < 6; ++k)
+        if (s == fe::dof_name(k)) mask[static_cast<size_t>(k)] = found = true;
+      if (!found) c_.fail(d, key, "unknown DOF '" + s + "' (expected UX UY UZ RX RY RZ)");
+    }
+    return mask;
+  }
+
+  void material(const std::string& name, const YAML::Node& n) {
+    c_.expect_map(n, "material '" + name + "'", {"E", "nu", "rho"});
+    src_.add("material", name, n);
+    m_.materials[name] = {name, c_.number(n, "E"), c_.number(n, "nu"), c_.number(n, "rho")};
+  }
+  void beam_section(const std::string& name, const YAML::Node& n) {
+    c_.expect_map(n, "beam section '" + name + "'",
+                  {"material", "shape", "width", "height", "diameter", "wall", "web_thickness", "flange_thickness",
+                   "A", "Iy", "Iz", "J", "shear_area_y", "shear_area_z"});
+    src_.add("beam_section", name, n);
+    fe::BeamSection s;
+    s.name = name;
+    s.material = c_.text(n, "material");
+    const std::string shape = c_.text(n, "shape");
+    using fe::SectionShape;
+    const std::map<std::string, SectionShape> shapes{{"rectangle", SectionShape::Rectangle},
+                                                     {"circle", SectionShape::Circle},
+                                                     {"box", SectionShape::Box},
+                                                     {"tube", SectionShape::Tube},
+                                                     {"i-section", SectionShape::ISection},
+                                                     {"general", SectionShape::General}};
+    auto it = shapes.find(shape);
+    if (it == shapes.end()) c_.fail(n["shape"], "shape", "expected rectangle, circle, box, tube, i-section or general");
+    s.shape = it->second;
+    switch (s.shape) {
+      case SectionShape::Rectangle:
+        s.width = c_.number(n, "width");
+        s.height = c_.number(n, "height");
+        break;
+      case SectionShape::Circle:
+        s.diameter = c_.number(n, "diameter");
+        break;
+      case SectionShape::Tube:
+        s.diameter = c_.number(n, "diameter");
+        s.wall = c_.number(n, "wall");
+        break;
+      case SectionShape::Box:
+        s.width = c_.number(n, "width");
+        s.height = c_.number(n, "height");
+        s.wall = c_.number_or(n, "wall", 0.0);
+        s.web_thickness = c_.number_or(n, "web_thickness", 0.0);
+        s.flange_thickness = c_.number_or(n, "flange_thickness", 0.0);
+        if (!n["wall"].IsDefined() && !(n["web_thickness"].IsDefined() && n["flange_thickness"].IsDefined()))
+          c_.fail(n, "wall", "a box needs 'wall' or both 'web_thickness' and 'flange_thickness'");
+        break;
+      case SectionShape::ISection:
+        s.width = c_.number(n, "width");
+        s.height = c_.number(n, "height");
+        s.web_thickness = c_.number(n, "web_thickness");
+        s.flange_thickness = c_.number(n, "flange_thickness");
+        break;
+      case SectionShape::General:
+        s.A = c_.number(n, "A");
+        s.Iy = c_.number(n, "Iy");
+        s.Iz = c_.number(n, "Iz");
+        s.J = c_.number(n, "J");
+        s.shear_area_y = c_.optional_number(n, "shear_area_y");
+        s.shear_area_z = c_.optional_number(n, "shear_area_z");
+        break;
+    }
+    m_.beam_sections[name] = s;
+  }
+  void shell_section(const std::string& name, const YAML::Node& n) {
+    c_.expect_map(n, "shell section '" + name + "'", {"material", "thickness"});
+    src_.add("shell_section", name, n);
+    m_.shell_sections[name] = {name, c_.text(n, "material"), c_.number(n, "thickness")};
+  }
+  void node(const YAML::Node& n) {
+    if (!n.IsSequence() || n.size() != 4) c_.fail(n, index_, "a node is [id, x, y, z]");
+    const NodeId id = c_.as_integer(n[0], "nodes");
+    src_.add("node", std::to_string(id), n);
+    if (m_.has_node(id)) c_.fail(n, "nodes", "duplicate node id " + std::to_string(id));
+    m_.add_node(id, {c_.as_number(n[1], "nodes"), c_.as_number(n[2], "nodes"), c_.as_number(n[3], "nodes")});
+  }
+  void beam(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "nodes", "section", "orientation", "theory", "mass", "rotary_inertia"});
+    fe::BeamElement b;
+    b.id = id_or_index(n);
+    src_.add("beam", b.id, n);
+    const YAML::Node nodes = c_.required(n, "nodes");
+    if (!nodes.IsSequence() || nodes.size() != 2) c_.fail(nodes, "nodes", "a beam has 2 nodes");
+    b.nodes = {c_.as_integer(nodes[0], "nodes"), c_.as_integer(nodes[1], "nodes")};
+    b.section = c_.text(n, "section");
+    if (n["orientation"].IsDefined()) b.orientation = c_.vec3(n, "orientation");
+    b.theory = theory(n);
+    b.mass = mass_kind(n);
+    b.rotary_inertia = c_.boolean_or(n, "rotary_inertia", true);
+    m_.beams.push_back(b);
+  }
+  void shell(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "nodes", "section", "mass"});
+    fe::ShellElement s;
+    s.id = id_or_index(n);
+    src_.add("shell", s.id, n);
+    const YAML::Node nodes = c_.required(n, "nodes");
+    if (!nodes.IsSequence() || (nodes.size() != 4 && nodes.size() != 8))
+      c_.fail(nodes, "nodes", "a shell has 4 nodes (MITC4) or 8 nodes (quadratic)");
+    for (const auto& v : nodes) s.nodes.push_back(c_.as_integer(v, "nodes"));
+    s.section = c_.text(n, "section");
+    s.mass = mass_kind(n);
+    m_.shells.push_back(s);
+  }
+  void member(const YAML::Node& n) {
+    c_.expect_map(n, index_,
+                  {"id", "from", "to", "elements", "section", "orientation", "theory", "mass", "rotary_inertia"});
+    fe::MemberSpec s;
+    s.id = id_or_index(n);
+    s.from = c_.vec3(n, "from");
+    s.to = c_.vec3(n, "to");
+    s.elements = static_cast<int>(c_.integer(n, "elements"));
+    s.section = c_.text(n, "section");
+    if (n["orientation"].IsDefined()) s.orientation = c_.vec3(n, "orientation");
+    s.theory = theory(n);
+    s.mass = mass_kind(n);
+    s.rotary_inertia = c_.boolean_or(n, "rotary_inertia", true);
+    generated(n, s.id, [&] {
+      fe::NodeMerger merger(m_, kNodeTolerance);
+      const size_t first = m_.beams.size();
+      fe::mesh_member(m_, merger, s);
+      for (size_t i = first; i < m_.beams.size(); ++i) src_.add("beam", m_.beams[i].id, n);
+    });
+  }
+  void patch(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "corners", "divisions", "order", "section", "mass"});
+    fe::PatchSpec s;
+    s.id = id_or_index(n);
+    const std::vector<Vec3> corners = points(n, "corners");
+    if (corners.size() != 4) c_.fail(n["corners"], "corners", "a patch has 4 corners");
+    std::copy(corners.begin(), corners.end(), s.corners.begin());
+    std::tie(s.nx, s.ny) = pair_of_ints(n, "divisions");
+    s.quadratic = quadratic(n);
+    s.section = c_.text(n, "section");
+    s.mass = mass_kind(n);
+    generated(n, s.id, [&] {
+      fe::NodeMerger merger(m_, kNodeTolerance);
+      const size_t first = m_.shells.size();
+      fe::mesh_shell_patch(m_, merger, s);
+      for (size_t i = first; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
+    });
+  }
+  void box_girder(const YAML::Node& n) {
+    c_.expect_map(n, index_,
+                  {"id", "from", "to", "up", "width", "height", "web_thickness", "flange_thickness", "material",
+                   "divisions", "order", "end_plates", "end_couplings", "mass"});
+    fe::BoxGirderSpec s;
+    s.id = id_or_index(n);
+    s.from = c_.vec3(n, "from");
+    s.to = c_.vec3(n, "to");
+    if (n["up"].IsDefined()) s.up = c_.vec3(n, "up");
+    s.width = c_.number(n, "width");
+    s.height = c_.number(n, "height");
+    s.web_thickness = c_.number(n, "web_thickness");
+    s.flange_thickness = c_.number(n, "flange_thickness");
+    s.material = c_.text(n, "material");
+    const YAML::Node d = c_.required(n, "divisions");
+    if (!d.IsSequence() || d.size() != 3) c_.fail(d, "divisions", "expected [along, across width, across height]");
+    s.n_along = static_cast<int>(c_.as_integer(d[0], "divisions"));
+    s.n_width = static_cast<int>(c_.as_integer(d[1], "divisions"));
+    s.n_height = static_cast<int>(c_.as_integer(d[2], "divisions"));
+    s.quadratic = quadratic(n);
+    s.end_plates = c_.boolean_or(n, "end_plates", true);
+    s.end_couplings = c_.boolean_or(n, "end_couplings", true);
+    s.mass = mass_kind(n);
+    generated(n, s.id, [&] {
+      fe::NodeMerger merger(m_, kNodeTolerance);
+      const size_t first = m_.shells.size(), first_c = m_.couplings.size();
+      fe::mesh_box_girder(m_, merger, s);
+      for (size_t i = first; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
+      for (size_t i = first_c; i < m_.couplings.size(); ++i) src_.add("coupling", m_.couplings[i].id, n);
+      src_.add("shell_section", s.id + ".web", n);
+      src_.add("shell_section", s.id + ".flange", n);
+    });
+  }
+  void fixed_frame(const YAML::Node& n) {
+    index_ = "fixed_frame";
+    c_.expect_map(n, "fixed_frame",
+                  {"id", "column_bases", "height", "column_section", "beam_section", "extra_beams", "ring", "joints",
+                   "elements_per_member", "joint_set"});
+    fe::FixedFrameSpec s;
+    s.id = c_.text_or(n, "id", s.id);
+    s.column_bases = points(n, "column_bases");
+    s.height = c_.number(n, "height");
+    s.column_section = c_.text(n, "column_section");
+    s.beam_section = c_.text(n, "beam_section");
+    if (n["extra_beams"].IsDefined()) {
+      c_.expect_sequence(n["extra_beams"], "extra_beams");
+      for (const auto& p : n["extra_beams"]) {
+        if (!p.IsSequence() || p.size() != 2) c_.fail(p, "extra_beams", "expected pairs of column numbers [i, j]");
+        s.extra_beams.push_back({static_cast<int>(c_.as_integer(p[0], "extra_beams")) - 1,
+                                 static_cast<int>(c_.as_integer(p[1], "extra_beams")) - 1});
+      }
+    }
+    s.ring = c_.boolean_or(n, "ring", true);
+    s.joints = points(n, "joints");
+    s.elements_per_member = c_.integer_or(n, "elements_per_member", s.elements_per_member);
+    s.joint_set = c_.text_or(n, "joint_set", s.joint_set);
+    generated(n, s.id, [&] { fe::build_fixed_frame(m_, s); });
+  }
+  void carrying_frame(const YAML::Node& n) {
+    index_ = "carrying_frame";
+    c_.expect_map(n, "carrying_frame",
+                  {"id", "corner_min", "corner_max", "bays", "section", "joints", "elements_per_member", "joint_set"});
+    fe::CarryingFrameSpec s;
+    s.id = c_.text_or(n, "id", s.id);
+    s.corner_min = c_.vec3(n, "corner_min");
+    s.corner_max = c_.vec3(n, "corner_max");
+    std::tie(s.bays_x, s.bays_y) = pair_of_ints(n, "bays");
+    s.section = c_.text(n, "section");
+    s.joints = points(n, "joints");
+    s.elements_per_member = c_.integer_or(n, "elements_per_member", s.elements_per_member);
+    s.joint_set = c_.text_or(n, "joint_set", s.joint_set);
+    generated(n, s.id, [&] { fe::build_carrying_frame(m_, s); });
+  }
+  // Mesher errors and the generated entities point at the generator's entry.
+  template <class F>
+  void generated(const YAML::Node& n, const std::string& id, F f) {
+    const size_t beams0 = m_.beams.size(), couplings0 = m_.couplings.size();
+    try {
+      f();
+    } catch (const fe::ModelError& e) {
+      const YAML::Node at = n[e.where().key].IsDefined() ? n[e.where().key] : n;
+      c_.fail(at, e.where().key.empty() ? id : e.where().key, e.what());
+    }
+    for (size_t i = beams0; i < m_.beams.size(); ++i) src_.add("beam", m_.beams[i].id, n);
+    for (size_t i = couplings0; i < m_.couplings.size(); ++i) src_.add("coupling", m_.couplings[i].id, n);
+    for (const auto& s : m_.supports) src_.add("support", s.id, n);
+  }
+  void node_set(const std::string& name, const YAML::Node& n) {
+    index_ = "node_sets." + name;
+    src_.add("node_set", name, n);
+    if (n.IsSequence()) {
+      std::vector<NodeId> ids;
+      for (const auto& v : n) ids.push_back(existing_node(v, name));
+      m_.node_sets[name] = ids;
+      return;
+    }
+    c_.expect_map(n, "node set '" + name + "'", {"nodes", "set", "box", "node", "at"});
+    m_.node_sets[name] = node_list(n);
+  }
+  void point_mass(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "node", "at", "mass", "inertia"});
+    fe::PointMass p;
+    p.id = id_or_index(n);
+    src_.add("point_mass", p.id, n);
+    p.node = node_ref(n, "node", "at");
+    p.mass = c_.number(n, "mass");
+    if (n["inertia"].IsDefined()) {
+      const auto J = c_.numbers(n, "inertia", 6);
+      std::copy(J.begin(), J.end(), p.inertia.begin());
+    }
+    m_.point_masses.push_back(p);
+  }
+  void spring(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "node", "at", "other", "other_at", "stiffness", "axial", "direction"});
+    fe::Spring s;
+    s.id = id_or_index(n);
+    src_.add("spring", s.id, n);
+    s.node = node_ref(n, "node", "at");
+    if (n["other"].IsDefined() || n["other_at"].IsDefined()) s.other = node_ref(n, "other", "other_at");
+    if (n["stiffness"].IsDefined() == n["axial"].IsDefined())
+      c_.fail(n, "stiffness", "give exactly one of 'stiffness' (6 values) and 'axial'");
+    if (n["stiffness"].IsDefined()) {
+      const auto k = c_.numbers(n, "stiffness", 6);
+      std::copy(k.begin(), k.end(), s.stiffness.begin());
+    } else {
+      s.axial = c_.number(n, "axial");
+      if (n["direction"].IsDefined()) s.direction = c_.vec3(n, "direction");
+    }
+    m_.springs.push_back(s);
+  }
+  void support(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "node", "at", "nodes", "set", "box", "dofs"});
+    const std::string id = id_or_index(n);
+    const fe::DofMask mask = dofs(n, "dofs", {true, true, true, true, true, true});
+    for (NodeId node : node_list(n)) {
+      const std::string sid = id + "@" + std::to_string(node);
+      src_.add("support", sid, n);
+      m_.supports.push_back({sid, node, mask});
+    }
+  }
+  void coupling(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "reference", "reference_at", "nodes", "set", "box", "dofs"});
+    fe::RigidCoupling r;
+    r.id = id_or_index(n);
+    src_.add("coupling", r.id, n);
+    r.reference = node_ref(n, "reference", "reference_at");
+    r.dependents = node_list(n);
+    r.dofs = dofs(n, "dofs", r.dofs);
+    m_.couplings.push_back(r);
+  }
+
+  const YamlContext& c_;
+  fe::Model& m_;
+  SourceMap& src_;
+  std::string index_;
+};
+
+}  // namespace
+
+ModelFile parse_model(const std::string& text, const std::string& source) {
+  const YamlContext ctx(source);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source, e.mark.line + 1, "", "malformed YAML: " + e.msg);
+  }
+  if (!root.IsMap()) throw InputError(source, 1, "", "a model file is a mapping of sections (materials, nodes, ...)");
+  ModelFile out;
+  SourceMap src;
+  try {
+    Reader(ctx, out.model, src).read(root);
+    out.model.validate();
+  } catch (const fe::ModelError& e) {
+    const YAML::Node at = src.find(e.where());
+    throw InputError(source, at.IsDefined() ? YamlContext::line_of(at) : 0,
+                     e.where().key.empty() ? e.where().kind : e.where().key, e.what());
+  }
+  if (out.model.nodes.empty()) throw InputError(source, 1, "nodes", "the model has no nodes");
+  out.name = root["name"].IsDefined() ? ctx.text(root, "name") : std::filesystem::path(source).stem().string();
+  return out;
+}
+
+ModelFile read_model(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), 0, "", "cannot open the file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_model(ss.str(), file.string());
+}
+
+}  // namespace rigflex::io

@@ -1,0 +1,111 @@
+#include "io/vtk_modes.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+namespace rigflex::io {
+namespace fs = std::filesystem;
+
+namespace {
+
+vtkSmartPointer<vtkUnstructuredGrid> mesh_grid(const fe::Model& model) {
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  for (const fe::Node& n : model.nodes) points->InsertNextPoint(n.x.x(), n.x.y(), n.x.z());
+  grid->SetPoints(points);
+  auto idx = [&](fe::NodeId id) { return static_cast<vtkIdType>(model.node_index(id)); };
+  vtkNew<vtkIntArray> kind;  // 1 beam, 2 shell, 3 point mass: lets ParaView threshold by element kind
+  kind->SetName("element_kind");
+  for (const fe::BeamElement& b : model.beams) {
+    const vtkIdType ids[2] = {idx(b.nodes[0]), idx(b.nodes[1])};
+    grid->InsertNextCell(VTK_LINE, 2, ids);
+    kind->InsertNextValue(1);
+  }
+  for (const fe::ShellElement& s : model.shells) {
+    std::vector<vtkIdType> ids;
+    for (fe::NodeId id : s.nodes) ids.push_back(idx(id));
+    // VTK's quadratic quad uses our order: corners, then mid-sides 1-2, 2-3, 3-4, 4-1.
+    grid->InsertNextCell(s.nodes.size() == 8 ? VTK_QUADRATIC_QUAD : VTK_QUAD, static_cast<vtkIdType>(ids.size()),
+                         ids.data());
+    kind->InsertNextValue(2);
+  }
+  for (const fe::PointMass& p : model.point_masses) {
+    const vtkIdType id = idx(p.node);
+    grid->InsertNextCell(VTK_VERTEX, 1, &id);
+    kind->InsertNextValue(3);
+  }
+  grid->GetCellData()->AddArray(kind);
+  return grid;
+}
+
+std::string pvd(const Eigen::VectorXd& f, const std::vector<std::string>& files) {
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  o.precision(10);
+  for (size_t i = 0; i < files.size(); ++i)
+    o << "    <DataSet timestep=\"" << i + 1 << "\" part=\"0\" name=\"mode " << i + 1 << " " << f(static_cast<Eigen::Index>(i))
+      << " Hz\" file=\"" << files[i] << "\"/>\n";
+  o << "  </Collection>\n</VTKFile>\n";
+  return o.str();
+}
+
+}  // namespace
+
+void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model& model, const fe::DofMap& dofs,
+                          const Eigen::VectorXd& frequencies_hz, const Eigen::MatrixXd& vectors) {
+  std::vector<std::string> names;
+  for (Eigen::Index k = 0; k < vectors.cols(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "mode_%03ld.vtu", static_cast<long>(k + 1));
+    names.emplace_back(name);
+    const Eigen::VectorXd full = dofs.expand(vectors.col(k));
+    const double f = frequencies_hz(k);
+    batch.add(dir / name, [&model, full, f, k](const fs::path& tmp) {
+      auto grid = mesh_grid(model);
+      vtkNew<vtkDoubleArray> u, r;
+      u->SetName("translation");
+      r->SetName("rotation");
+      u->SetNumberOfComponents(3);
+      r->SetNumberOfComponents(3);
+      for (size_t i = 0; i < model.nodes.size(); ++i) {
+        const auto b = static_cast<Eigen::Index>(6 * i);
+        u->InsertNextTuple3(full(b), full(b + 1), full(b + 2));
+        r->InsertNextTuple3(full(b + 3), full(b + 4), full(b + 5));
+      }
+      grid->GetPointData()->AddArray(u);
+      grid->GetPointData()->AddArray(r);
+      grid->GetPointData()->SetActiveVectors("translation");
+      vtkNew<vtkDoubleArray> freq;
+      freq->SetName("frequency_hz");
+      freq->InsertNextValue(f);
+      vtkNew<vtkIntArray> mode;
+      mode->SetName("mode");
+      mode->InsertNextValue(static_cast<int>(k + 1));
+      grid->GetFieldData()->AddArray(freq);
+      grid->GetFieldData()->AddArray(mode);
+      vtkNew<vtkXMLUnstructuredGridWriter> writer;
+      writer->SetFileName(tmp.string().c_str());
+      writer->SetInputData(grid);
+      writer->SetDataModeToAppended();
+      if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + tmp.string());
+    });
+  }
+  batch.add_text(dir / "modes.pvd", pvd(frequencies_hz, names));
+}
+
+}  // namespace rigflex::io

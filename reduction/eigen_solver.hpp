@@ -1,0 +1,132 @@
+#pragma once
+// The generalized symmetric eigenproblem of structural dynamics,
+//   K x = lambda M x,   lambda = omega^2 in (rad/s)^2,
+// with K symmetric positive semidefinite (free-free structures have rigid-body
+// modes, lambda = 0) and M symmetric positive semidefinite and possibly
+// singular (massless rotations: those give infinite eigenvalues, which are
+// never returned).
+//
+// solve_lanczos: shift-invert Lanczos, Op = (K - sigma M)^-1 M in the M-inner
+// product, with thick restart and full M-reorthogonalization on a cached
+// CHOLMOD factorization. solve_dense: dense oracle for small models.
+// Numerical outcomes (no convergence, singular pencil) are reported in the
+// result; only invalid options throw (std::invalid_argument).
+#include <Eigen/Core>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "reduction/sparse_cholesky.hpp"
+
+namespace rigflex::reduction {
+
+struct EigenProgress {
+  int restart = 0;           // thick restarts (and multiplicity checks) so far
+  int converged = 0;         // wanted pairs converged, counted from the lowest
+  int wanted = 0;            // EigenOptions::count
+  long operator_applications = 0;
+};
+
+enum class EigenMethod {
+  automatic,  // dense when n <= dense_threshold, Lanczos otherwise
+  lanczos,
+  dense,
+};
+
+struct EigenOptions {
+  int count = 10;  // wanted lowest eigenpairs
+  // sigma in (rad/s)^2; must lie below the lowest eigenvalue (K - sigma M
+  // positive definite). Default: default_shift(K, M), slightly negative.
+  std::optional<double> shift;
+  // Convergence of Ritz pair i on the transformed problem:
+  // |beta_m s_mi| <= tolerance * |theta_i|.
+  double tolerance = 1e-10;
+  int subspace = 0;  // Lanczos basis size, 0 = auto: max(2 count, count + 20, count + 2 block_size), capped at n
+  int max_restarts = 200;
+  unsigned seed = 1;   // deterministic start vectors
+  int block_size = 1;  // 1: single-vector Lanczos; > 1: block Lanczos, one multi-RHS solve per block
+  // After convergence, restart once from a fresh random block orthogonal to
+  // the converged vectors and confirm that no eigenvalue below the highest
+  // wanted one was missed (Krylov methods can miss copies of a repeated
+  // eigenvalue). Costs roughly the iterations needed to converge one more pair.
+  bool verify_multiplicities = true;
+  EigenMethod method = EigenMethod::automatic;
+  Eigen::Index dense_threshold = 200;
+  std::function<void(const EigenProgress&)> progress;  // optional
+
+  // Throws std::invalid_argument naming the offending option.
+  void validate(Eigen::Index n) const;
+  // Basis size actually used for a problem of size n.
+  int resolved_subspace(Eigen::Index n) const;
+};
+
+struct EigenResult {
+  bool converged = false;   // all `requested` pairs converged
+  int requested = 0;
+  int converged_count = 0;  // == eigenvalues.size()
+  std::string message;
+  Eigen::VectorXd eigenvalues;  // ascending lambda; only converged pairs
+  Eigen::MatrixXd vectors;      // columns M-orthonormal: X' M X = I; largest |component| positive
+  // Per pair: ||K x - lambda M x|| / max(||K x||, ||K||_1 ||x|| 1e-14).
+  // The floor term keeps the ratio meaningful for rigid-body modes, whose
+  // K x is pure rounding: it measures their residual against the size K x
+  // would have for a unit-frequency-scale motion.
+  Eigen::VectorXd residuals;
+  double orthogonality_error = 0;  // max |X' M X - I|
+  double shift = 0;
+  int restarts = 0;
+  long operator_applications = 0;  // applications of (K - sigma M)^-1 M to a vector
+  double factor_seconds = 0, iteration_seconds = 0;
+  std::vector<Eigen::Index> mechanism_dofs;  // filled when the shifted matrix was singular
+
+  // sqrt(max(lambda, 0)) / (2 pi): rigid-body modes whose lambda rounds to a
+  // tiny negative value report 0 Hz.
+  Eigen::VectorXd frequencies_hz() const;
+};
+
+// Default shift: sigma = -1e-10 * s, s = sum(K_ii) / sum(M_ii) over the DOFs
+// with M_ii > 0 (the mass-weighted mean of the diagonal Rayleigh quotients,
+// a scale of the upper spectrum that ignores massless DOFs and, unlike
+// max(K_ii/M_ii), is not driven by one stiff, nearly massless DOF). Why so
+// small: the convergence of the wanted modes depends on the gaps of
+// 1/(lambda - sigma), which are undistorted only while |sigma| << lambda_1;
+// the price, conditioning of K - sigma M ~ s/|sigma| along rigid-body modes,
+// is harmless for shift-invert (errors fall along those very modes), as long
+// as their pivots (~|sigma| times the rigid-body mass) stay well above
+// rounding. factorize_pencil checks that and retries at 1000 sigma if not.
+double default_shift(const SpMat& K, const SpMat& M);
+
+// Factorization of K - sigma M for the Lanczos, with the checks above.
+struct PencilFactorization {
+  bool ok = false;
+  double shift = 0;
+  std::string message;
+  std::vector<Eigen::Index> mechanism_dofs;  // when K - sigma M is singular by a mechanism
+  FactorStatus status;                       // of the last factorization tried
+};
+PencilFactorization factorize_pencil(const SpMat& K, const SpMat& M, std::optional<double> shift,
+                                     SparseCholesky& factor);
+
+// Lowest `options.count` eigenpairs by shift-invert Lanczos (or the dense
+// path, see EigenOptions::method). Throws std::invalid_argument for invalid
+// options or mismatched matrix sizes only.
+EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& options);
+
+// Same, reusing `factor_at_shift`, a successful factorization of
+// K - sigma M (from factorize_pencil or SparseCholesky::factorize_shifted).
+// sigma is factor_at_shift.shift() or, failing that, options.shift; one of
+// them must be set and they must agree.
+EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& options,
+                          SparseCholesky& factor_at_shift);
+
+// Dense oracle: Cholesky L L' = K - shift M, the standard symmetric problem
+// L^-1 M L^-T y = nu y, lambda = shift + 1/nu, dropping nu ~ 0 (the infinite
+// eigenvalues of a singular M). shift must lie below the lowest eigenvalue.
+EigenResult solve_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int count, double shift);
+
+// Computes r.residuals and r.orthogonality_error from K, M and the pairs in
+// r, independently of the solver that produced them.
+void check_eigenpairs(const SpMat& K, const SpMat& M, EigenResult& r);
+
+}  // namespace rigflex::reduction

@@ -1,0 +1,20 @@
+#include "reduction/modal_analysis.hpp"
+
+namespace rigflex::reduction {
+
+ModalAnalysis run_modal_analysis(const fe::Model& model, const EigenOptions& options) {
+  ModalAnalysis a;
+  a.system = fe::assemble(model);
+  a.mass = fe::mass_properties(model);
+  a.result = solve_lanczos(a.system.K, a.system.M, options);
+  for (Eigen::Index dof : a.result.mechanism_dofs) a.mechanism.push_back(a.system.dofs.describe(dof));
+  if (a.result.converged_count > 0) {
+    const Eigen::MatrixXd R = fe::rigid_body_modes_free(model, a.system.dofs, a.mass.cog);
+    std::vector<bool> translation(a.system.dofs.local.size());
+    for (size_t i = 0; i < translation.size(); ++i) translation[i] = a.system.dofs.local[i] < 3;
+    a.summary = summarize_modes(a.system.M, a.result.eigenvalues, a.result.vectors, R, translation);
+  }
+  return a;
+}
+
+}  // namespace rigflex::reduction

@@ -1,0 +1,27 @@
+#pragma once
+// A modal analysis of a frame model: assemble, solve, summarize.
+#include <string>
+
+#include "fe/assembly.hpp"
+#include "fe/mass_properties.hpp"
+#include "fe/model.hpp"
+#include "reduction/eigen_solver.hpp"
+#include "reduction/modal_summary.hpp"
+
+namespace rigflex::reduction {
+
+struct ModalAnalysis {
+  fe::AssembledSystem system;
+  fe::MassProperties mass;  // of the whole model
+  EigenResult result;
+  ModalSummary summary;
+  // Filled when K - sigma M was singular: "node 12 RZ", ...
+  std::vector<std::string> mechanism;
+};
+
+// Never throws for numerical outcomes: check result.converged and mechanism.
+// Throws fe::ModelError for an invalid model and std::invalid_argument for
+// invalid options.
+ModalAnalysis run_modal_analysis(const fe::Model& model, const EigenOptions& options);
+
+}  // namespace rigflex::reduction

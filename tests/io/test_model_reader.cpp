@@ -1,0 +1,164 @@
+// The model reader: valid input builds the model; bad input names file, line and key.
+#include <gtest/gtest.h>
+
+#include "io/input_error.hpp"
+#include "io/model_reader.hpp"
+
+namespace rigflex {
+namespace {
+
+const char* kValid = R"(name: frame
+materials:
+  steel: {E: 2.1e11, nu: 0.3, rho: 7850}
+beam_sections:
+  col: {material: steel, shape: box, width: 0.2, height: 0.2, wall: 0.01}
+  ib: {material: steel, shape: i-section, width: 0.2, height: 0.3, web_thickness: 0.01, flange_thickness: 0.015}
+nodes:
+  - [1, 0, 0, 0]
+  - [2, 0, 0, 2]
+members:
+  - {id: top, from: [0, 0, 2], to: [3, 0, 2], elements: 3, section: ib}
+supports:
+  - {node: 1, dofs: all}
+point_masses:
+  - {id: tip, at: [3, 0, 2], mass: 100, inertia: [1, 1, 1, 0, 0, 0]}
+beams:
+  - {id: post, nodes: [1, 2], section: col}
+)";
+
+// Parses `text` and returns the error; fails the test if none is thrown.
+io::InputError error_of(const std::string& text) {
+  try {
+    io::parse_model(text, "bad.yaml");
+  } catch (const io::InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for:\n" << text;
+  return io::InputError("", 0, "", "");
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  EXPECT_NE(pos, std::string::npos) << from;
+  return s.replace(pos, from.size(), to);
+}
+
+TEST(ModelReader, ReadsAValidModel) {
+  const io::ModelFile f = io::parse_model(kValid, "frame.yaml");
+  EXPECT_EQ(f.name, "frame");
+  EXPECT_EQ(f.model.nodes.size(), 5u);  // 2 given + 3 generated (one merged with node 2)
+  EXPECT_EQ(f.model.beams.size(), 4u);
+  EXPECT_EQ(f.model.point_masses.size(), 1u);
+  EXPECT_EQ(f.model.supports.size(), 1u);
+}
+
+TEST(ModelReader, MalformedYamlNamesTheLine) {
+  const auto e = error_of("materials:\n  steel: {E: 1, nu: [0.3\n");
+  EXPECT_EQ(e.file(), "bad.yaml");
+  EXPECT_GT(e.line(), 0);
+  EXPECT_NE(std::string(e.what()).find("malformed YAML"), std::string::npos);
+}
+
+TEST(ModelReader, UnknownKeyNamesLineAndKey) {
+  const auto e = error_of(replace(kValid, "wall: 0.01}", "wall: 0.01, colour: red}"));
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_EQ(e.key(), "colour");
+}
+
+TEST(ModelReader, MissingKeyNamesLineAndKey) {
+  const auto e = error_of(replace(kValid, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.key(), "rho");
+}
+
+TEST(ModelReader, WrongTypeNamesLineAndKey) {
+  const auto e = error_of(replace(kValid, "elements: 3", "elements: three"));
+  EXPECT_EQ(e.line(), 11);
+  EXPECT_EQ(e.key(), "elements");
+}
+
+TEST(ModelReader, NonPositiveModulus) {
+  const auto e = error_of(replace(kValid, "E: 2.1e11", "E: -2.1e11"));
+  EXPECT_EQ(e.line(), 3);
+  EXPECT_EQ(e.key(), "E");
+}
+
+TEST(ModelReader, NonPositiveDensity) {
+  const auto e = error_of(replace(kValid, "rho: 7850", "rho: 0"));
+  EXPECT_EQ(e.key(), "rho");
+}
+
+TEST(ModelReader, NonPositiveSectionDimension) {
+  const auto e = error_of(replace(kValid, "wall: 0.01", "wall: 0"));
+  EXPECT_EQ(e.line(), 5);
+  EXPECT_EQ(e.key(), "wall");
+}
+
+TEST(ModelReader, DuplicateNodeId) {
+  const auto e = error_of(replace(kValid, "  - [2, 0, 0, 2]", "  - [1, 0, 0, 2]"));
+  EXPECT_EQ(e.line(), 9);
+  EXPECT_NE(std::string(e.what()).find("duplicate node id 1"), std::string::npos);
+}
+
+TEST(ModelReader, ElementNamingAMissingNode) {
+  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("node 9"), std::string::npos);
+}
+
+TEST(ModelReader, ZeroLengthElement) {
+  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_NE(std::string(e.what()).find("zero length"), std::string::npos);
+}
+
+TEST(ModelReader, UnknownSection) {
+  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
+  EXPECT_EQ(e.line(), 17);
+  EXPECT_EQ(e.key(), "section");
+}
+
+TEST(ModelReader, CouplingWhoseNodesCoincide) {
+  std::string text = kValid;
+  text += "couplings:\n  - {id: c, reference: 2, nodes: [3]}\n";
+  text = replace(text, "  - [2, 0, 0, 2]", "  - [2, 0, 0, 2]\n  - [3, 0, 0, 2.0]");
+  const auto e = error_of(text);
+  EXPECT_EQ(e.key(), "nodes");
+  EXPECT_NE(std::string(e.what()).find("coincides"), std::string::npos);
+}
+
+TEST(ModelReader, PositionThatMatchesNoNode) {
+  const auto e = error_of(replace(kValid, "at: [3, 0, 2]", "at: [3, 0, 2.5]"));
+  EXPECT_EQ(e.line(), 15);
+  EXPECT_EQ(e.key(), "at");
+}
+
+TEST(ModelReader, DegenerateShell) {
+  const std::string text = R"(materials:
+  steel: {E: 2.1e11, nu: 0.3, rho: 7850}
+shell_sections:
+  plate: {material: steel, thickness: 0.01}
+nodes:
+  - [1, 0, 0, 0]
+  - [2, 1, 0, 0]
+  - [3, 2, 0, 0]
+  - [4, 3, 0, 0]
+shells:
+  - {id: flat, nodes: [1, 2, 3, 4], section: plate}
+)";
+  const auto e = error_of(text);
+  EXPECT_EQ(e.line(), 11);
+}
+
+TEST(ModelReader, NonPositiveThickness) {
+  const auto e = error_of("materials:\n  s: {E: 1e9, nu: 0.3, rho: 1000}\nshell_sections:\n  p: {material: s, thickness: -1}\nnodes:\n  - [1, 0, 0, 0]\n");
+  EXPECT_EQ(e.line(), 4);
+  EXPECT_EQ(e.key(), "thickness");
+}
+
+TEST(ModelReader, MissingFile) {
+  EXPECT_THROW(io::read_model("/nonexistent/model.yaml"), io::InputError);
+}
+
+}  // namespace
+}  // namespace rigflex

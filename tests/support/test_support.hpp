@@ -1,0 +1,24 @@
+#pragma once
+// Helpers shared by the test suites: the verification cases of
+// shared/verification (targets read from the YAML files, never copied into
+// tests), and small model builders.
+#include <yaml-cpp/yaml.h>
+
+#include <string>
+#include <vector>
+
+namespace rigflex::test {
+
+struct Target {
+  int mode = 0;
+  double freq_hz = 0.0;
+};
+
+std::string verification_path(const std::string& file);
+YAML::Node verification_case(const std::string& file);
+// The `targets` of a case file, or of its `additional_cases` entry whose
+// `case` equals case_name.
+std::vector<Target> verification_targets(const std::string& file, const std::string& case_name = "");
+std::vector<double> verification_frequencies(const std::string& file, const std::string& case_name = "");
+
+}  // namespace rigflex::test
