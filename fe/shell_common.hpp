@@ -85,8 +85,11 @@ MatrixXd membrane_B(const Eigen::MatrixX2d& dNxy);
 // rotation vector (the mid-surface fibre rotates by beta = (ty, -tx)).
 MatrixXd bending_B(const Eigen::MatrixX2d& dNxy);
 
-// Drilling stabilization (see shell_common.cpp for the factors and why).
-void add_drilling_stiffness(MatrixXd& K, const LocalFrame& f, ShapeFn shape, const ShellProperties& p);
+// Drilling stiffness gamma G t integral (tz - omega)^2 (see shell_common.cpp
+// for the form, the factor and why): the modulus gamma G t, and the row
+// tz - (v_x - u_y)/2 of the compatible field at a point.
+double drilling_modulus(const ShellProperties& p);
+RowVectorXd drilling_row(const Shape& s, const Eigen::MatrixX2d& dNxy);
 
 // Local mass matrix: rho t N'N on u v w and rho t^3/12 N'N on tx ty tz,
 // integrated with an n x n rule; lumped by row sums (4 nodes) or HRZ

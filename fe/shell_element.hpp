@@ -2,6 +2,7 @@
 // Flat-facet shell elements: membrane + Reissner-Mindlin bending + drilling
 // stabilization, formed in a local element frame and rotated to global axes.
 #include <Eigen/Dense>
+#include <string>
 #include <vector>
 
 #include "fe/element_matrices.hpp"
@@ -14,16 +15,27 @@ struct ShellProperties {
   MassKind mass = MassKind::Consistent;
 };
 
-// 4-node MITC4 (assumed transverse shear strains tied at the edge midpoints).
-// x: 4 corner positions, counter-clockwise.
+// 4-node MITC4 (assumed transverse shear strains tied at the edge midpoints)
+// with an incompatible-mode membrane. x: 4 corner positions,
+// counter-clockwise about the normal (the normal follows the node order).
+// A slightly warped element is projected onto its mean plane and attached
+// to its nodes through rigid offsets.
 ElementMatrices shell_mitc4(const std::vector<Vec3>& x, const ShellProperties& p);
 
-// 8-node serendipity quadrilateral: corners counter-clockwise, then mid-sides
-// 1-2, 2-3, 3-4, 4-1 (CalculiX S8 / Abaqus node order).
+// 8-node quadrilateral: corners counter-clockwise, then mid-sides 1-2, 2-3,
+// 3-4, 4-1 (CalculiX S8 / Abaqus node order). Serendipity membrane; plate
+// bending from the 9-node MITC9 field with the centre node condensed.
+// Flat: all 8 nodes must lie (nearly) in one plane.
 ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p);
 
-// Checks the element geometry (positive Jacobian at the integration points,
-// no coincident nodes); throws ModelError naming `element_id`.
+// Both throw std::invalid_argument for a wrong node count, non-physical
+// properties or a non-positive Jacobian; check_shell_geometry() reports
+// geometry problems to the user first.
+
+// Checks the element geometry: 4 or 8 nodes, no coincident nodes, warp
+// (node distance from the mean plane) at most 1 % of the element size,
+// positive Jacobian at the integration points and at the nodes. Throws
+// ModelError({"shell", element_id, "nodes"}, ...).
 void check_shell_geometry(const std::vector<Vec3>& x, const std::string& element_id);
 
 }  // namespace rigflex::fe

@@ -11,14 +11,17 @@ namespace {
 
 using namespace shell_detail;
 
-// Bilinear membrane enriched with the bubbles (1 - xi^2), (1 - eta^2) in u
-// and v, condensed out. The plain bilinear element locks in in-plane
-// bending (parasitic shear), which matters for the webs of box girders
-// meshed one or two elements deep. The bubble derivatives use the centre
-// Jacobian scaled by det J0 / det J, so that they integrate to zero over any
-// quadrilateral and the element passes the constant-strain patch test.
-MatrixXd membrane_stiffness(const LocalFrame& f, const ShellProperties& p) {
+// Membrane and drilling. Bilinear membrane enriched with the bubbles
+// (1 - xi^2), (1 - eta^2) in u and v, condensed out: the plain bilinear
+// element locks in in-plane bending (parasitic shear), which matters for
+// the webs of box girders meshed one or two elements deep. The bubble
+// derivatives use the centre Jacobian scaled by det J0 / det J, so that they
+// integrate to zero over any quadrilateral and the element passes the
+// constant-strain patch test. The drilling penalty's omega includes the
+// bubbles, so pure in-plane bending costs no drilling energy.
+MatrixXd membrane_drilling_stiffness(const LocalFrame& f, const ShellProperties& p) {
   const Matrix3d C = membrane_rigidity(p);
+  const double Gd = drilling_modulus(p);
   const Shape s0 = shape_q4(0.0, 0.0);
   const Matrix2d J0 = jacobian(s0, f.xy);
   const double det0 = checked_det(J0);
@@ -29,22 +32,27 @@ MatrixXd membrane_stiffness(const LocalFrame& f, const ShellProperties& p) {
     const Shape s = shape_q4(g.xi, g.eta);
     const Matrix2d J = jacobian(s, f.xy);
     const double det = checked_det(J);
-    const MatrixXd Bc = membrane_B(cartesian_derivatives(s, J));
+    const Eigen::MatrixX2d dNxy = cartesian_derivatives(s, J);
+    const MatrixXd Bc = membrane_B(dNxy);
+    const RowVectorXd dc = drilling_row(s, dNxy);
     // Cartesian gradients of the two bubbles (columns), incompatible-mode form.
     Matrix2d ref;
     ref << -2.0 * g.xi, 0.0, 0.0, -2.0 * g.eta;
     const Matrix2d grad = det0 / det * J0inv * ref;
     MatrixXd Bi = MatrixXd::Zero(3, 4);  // internal DOFs: a_u1, a_u2, a_v1, a_v2
+    RowVectorXd di = RowVectorXd::Zero(4);
     for (int k = 0; k < 2; ++k) {
       Bi(0, k) = grad(0, k);
       Bi(2, k) = grad(1, k);
       Bi(1, 2 + k) = grad(1, k);
       Bi(2, 2 + k) = grad(0, k);
+      di(k) = 0.5 * grad(1, k);       // -omega from u bubble: +u_y / 2
+      di(2 + k) = -0.5 * grad(0, k);  // -omega from v bubble: -v_x / 2
     }
     const double w = g.weight * det;
-    Kcc += w * Bc.transpose() * C * Bc;
-    Kci += w * Bc.transpose() * C * Bi;
-    Kii += w * Bi.transpose() * C * Bi;
+    Kcc += w * (Bc.transpose() * C * Bc + Gd * dc.transpose() * dc);
+    Kci += w * (Bc.transpose() * C * Bi + Gd * dc.transpose() * di);
+    Kii += w * (Bi.transpose() * C * Bi + Gd * di.transpose() * di);
   }
   return Kcc - Kci * Kii.ldlt().solve(Kci.transpose());
 }
@@ -98,8 +106,7 @@ ElementMatrices shell_mitc4(const std::vector<Vec3>& x, const ShellProperties& p
   check_properties(p);
   if (x.size() != 4) throw std::invalid_argument("shell_mitc4: expected 4 nodes");
   const LocalFrame f = make_local_frame(x);
-  MatrixXd K = membrane_stiffness(f, p) + bending_stiffness(f, p);
-  add_drilling_stiffness(K, f, shape_q4, p);
+  const MatrixXd K = membrane_drilling_stiffness(f, p) + bending_stiffness(f, p);
   return to_global(K, shell_mass(f, shape_q4, 2, p), f);
 }
 

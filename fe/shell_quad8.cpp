@@ -26,14 +26,19 @@ namespace {
 
 using namespace shell_detail;
 
-MatrixXd membrane_stiffness(const LocalFrame& f, const ShellProperties& p) {
+// Membrane and drilling penalty (shell_common.cpp), both with the full 3x3
+// rule: it integrates the quadratic fields and sees all 8 nodal tz patterns.
+MatrixXd membrane_drilling_stiffness(const LocalFrame& f, const ShellProperties& p) {
   const Matrix3d C = membrane_rigidity(p);
+  const double Gd = drilling_modulus(p);
   MatrixXd K = MatrixXd::Zero(48, 48);
   for (const GaussPoint& g : gauss_rule(3)) {
     const Shape s = shape_q8(g.xi, g.eta);
     const Matrix2d J = jacobian(s, f.xy);
-    const MatrixXd B = membrane_B(cartesian_derivatives(s, J));
-    K += g.weight * checked_det(J) * B.transpose() * C * B;
+    const Eigen::MatrixX2d dNxy = cartesian_derivatives(s, J);
+    const MatrixXd B = membrane_B(dNxy);
+    const RowVectorXd d = drilling_row(s, dNxy);
+    K += g.weight * checked_det(J) * (B.transpose() * C * B + Gd * d.transpose() * d);
   }
   return K;
 }
@@ -138,8 +143,7 @@ ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p
   check_properties(p);
   if (x.size() != 8) throw std::invalid_argument("shell_quad8: expected 8 nodes");
   const LocalFrame f = make_local_frame(x);
-  MatrixXd K = membrane_stiffness(f, p) + bending_stiffness(f, p);
-  add_drilling_stiffness(K, f, shape_q8, p);
+  const MatrixXd K = membrane_drilling_stiffness(f, p) + bending_stiffness(f, p);
   return to_global(K, shell_mass(f, shape_q8, 3, p), f);
 }
 

@@ -12,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -32,25 +33,29 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Shortest round-trip text of a double ("0.25", "2.1e+11").
+// Text of a double for ccx, which reads at most 20 characters per field
+// and tells reals from integers by the decimal point (a *SPRING line "20000"
+// is read as a DOF number): the shortest round-trip form if it fits, else
+// fewer significant digits, always with a '.'.
 std::string num(double v) {
   std::array<char, 32> buf{};
   auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
-  return std::string(buf.data(), r.ptr);
+  std::string s(buf.data(), r.ptr);
+  for (int digits = 16; s.size() > 19 && digits > 6; --digits) {
+    std::snprintf(buf.data(), buf.size(), "%.*g", digits, v);
+    s = buf.data();
+  }
+  if (s.find('.') == std::string::npos) {
+    const auto e = s.find('e');
+    s.insert(e == std::string::npos ? s.size() : e, ".");
+  }
+  return s;
 }
 
 std::string vec_text(const fe::Vec3& v) { return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()); }
 
 [[noreturn]] void unsupported(const std::string& what) {
   throw std::invalid_argument("CalculiX export: " + what);
-}
-
-// Writes ids 16 per line (ccx's limit for set and element continuation lines).
-void id_lines(std::string& out, const std::vector<long>& ids) {
-  for (size_t i = 0; i < ids.size(); ++i) {
-    out += std::to_string(ids[i]);
-    out += (i + 1 == ids.size() || (i + 1) % 16 == 0) ? "\n" : ", ";
-  }
 }
 
 class InputWriter {
@@ -72,6 +77,7 @@ class InputWriter {
     write_nodes();
     write_beams();
     write_shells();
+    write_anchors();
     write_materials();
     write_point_masses();
     write_springs();
@@ -103,15 +109,24 @@ class InputWriter {
   }
 
   void mark_element_nodes() {
-    for (const auto& b : m_.beams)
-      for (fe::NodeId n : b.nodes) element_node_.insert(n);
-    for (const auto& s : m_.shells)
-      for (fe::NodeId n : s.nodes) element_node_.insert(n);
+    for (size_t i = 0; i < m_.beams.size(); ++i)
+      for (fe::NodeId n : m_.beams[i].nodes) {
+        element_node_.insert(n);
+        first_beam_.emplace(n, i);
+      }
+    for (size_t i = 0; i < m_.shells.size(); ++i)
+      for (fe::NodeId n : m_.shells[i].nodes) {
+        element_node_.insert(n);
+        first_shell_.emplace(n, i);
+      }
   }
   bool in_elements(fe::NodeId n) const { return element_node_.count(n) != 0; }
 
   void check_unsupported() {
-    for (const auto& [name, sec] : m_.beam_sections) {
+    std::set<std::string> used;
+    for (const auto& b : m_.beams) used.insert(b.section);
+    for (const std::string& name : used) {
+      const fe::BeamSection& sec = m_.beam_sections.at(name);
       if (sec.shape == fe::SectionShape::ISection)
         unsupported("beam section '" + name +
                     "' is an I-section; ccx 2.20 *BEAM SECTION supports RECT, CIRC, PIPE and BOX only");
@@ -133,7 +148,7 @@ class InputWriter {
       for (bool b : c.dofs)
         if (!b)
           unsupported("rigid coupling '" + c.id +
-                      "' couples only some DOFs; only couplings of all six DOFs are exported (*RIGID BODY)");
+                      "' couples only some DOFs; only couplings of all six DOFs are exported");
   }
 
   // ---- nodes -----------------------------------------------------------
@@ -143,6 +158,7 @@ class InputWriter {
     for (const auto& b : m_.beams)
       beam_mid_.push_back(new_node(0.5 * (m_.position(b.nodes[0]) + m_.position(b.nodes[1]))));
     for (const auto& c : m_.couplings) rot_node_.push_back(new_node(m_.position(c.reference)));
+    make_knot_anchors();
     for (const auto& s : m_.springs)
       if (s.axial && *s.axial != 0.0 && !s.other) anchor_.push_back(new_node(m_.position(s.node) + s.direction->normalized()));
       else anchor_.push_back(0);
@@ -152,9 +168,12 @@ class InputWriter {
     for (const auto& [k, x] : extra_nodes_) out_ += std::to_string(k) + ", " + vec_text(x) + "\n";
   }
 
-  // ---- materials (a zero-density copy for massless elements) -------------
-  std::string material_name(const std::string& material, bool massless) {
-    const auto key = std::make_pair(material, massless);
+  // ---- materials ------------------------------------------------------------
+  // Model materials as given, and massless copies (zero density) for
+  // elements with MassKind::None and for the knot anchors.
+  enum class Variant { plain, massless };
+  std::string material_name(const std::string& material, Variant v) {
+    const auto key = std::make_pair(material, v == Variant::massless);
     auto it = material_names_.find(key);
     if (it != material_names_.end()) return it->second;
     const std::string name = "M" + std::to_string(material_names_.size() + 1);
@@ -164,9 +183,81 @@ class InputWriter {
   void write_materials() {
     for (const auto& [key, name] : material_names_) {
       const fe::Material& mat = m_.materials.at(key.first);
-      out_ += "** material '" + key.first + "'" + (key.second ? " (massless elements)" : "") + "\n";
+      out_ += "** material '" + key.first + "'" + (key.second ? " (massless copy)" : "") + "\n";
       out_ += "*MATERIAL, NAME=" + name + "\n*ELASTIC\n" + num(mat.E) + ", " + num(mat.nu) + "\n";
       out_ += "*DENSITY\n" + num(key.second ? 0.0 : mat.rho) + "\n";
+    }
+  }
+
+  // ---- knot anchors -----------------------------------------------------
+  // ccx gives a beam or shell node rotational DOFs only where it builds a
+  // "knot" (a rigid body of all expanded nodes at the node, with a rotation
+  // node); it does so where elements with different tangents or normals
+  // meet, not where an *EQUATION or *RIGID BODY refers to the node's
+  // rotations: such terms are silently without effect, and a coupling to a
+  // node in the middle of a straight member leaves the rotation free (found
+  // by running ccx 2.20: the coupled masses came out as zero-frequency
+  // modes). So every beam or shell node whose rotations enter a coupling
+  // equation gets a short anchor beam at right angles to its element, which
+  // makes ccx build a knot there. The anchor is massless and free at its far
+  // end: it follows the knot rigidly and stores no energy, so it changes
+  // neither stiffness nor mass (a clamped anchor would act as a spring of
+  // stiffness E A / L). It has the element's material (no extreme
+  // stiffness ratios) and a square section a tenth of its length.
+  struct Anchor {
+    long mid = 0, far = 0;  // far end: free
+    fe::NodeId node = 0;
+    fe::Vec3 n1;
+    double length = 0;
+    std::string material;
+  };
+
+  void make_knot_anchors() {
+    std::set<fe::NodeId> nodes;
+    for (const auto& c : m_.couplings) {
+      for (fe::NodeId d : c.dependents)
+        if (in_elements(d)) nodes.insert(d);
+      if (in_elements(c.reference)) nodes.insert(c.reference);
+    }
+    for (fe::NodeId n : nodes) {
+      Anchor a;
+      a.node = n;
+      fe::Vec3 dir;
+      if (auto b = first_beam_.find(n); b != first_beam_.end()) {
+        const fe::BeamElement& e = m_.beams[b->second];
+        const Eigen::Matrix3d R = fe::beam_local_axes(m_.position(e.nodes[0]), m_.position(e.nodes[1]), e.orientation);
+        dir = R.row(1).transpose();
+        a.n1 = R.row(0).transpose();
+        const fe::BeamSection& sec = m_.beam_sections.at(e.section);
+        a.length = std::max({sec.width, sec.height, sec.diameter, std::sqrt(std::max(sec.A, 0.0))});
+        a.material = sec.material;
+      } else {
+        const fe::ShellElement& e = m_.shells[first_shell_.at(n)];
+        const fe::Vec3 x0 = m_.position(e.nodes[0]), x1 = m_.position(e.nodes[1]), x2 = m_.position(e.nodes[2]),
+                       x3 = m_.position(e.nodes[3]);
+        dir = (x2 - x0).cross(x3 - x1).normalized();
+        const fe::Vec3 edge = x1 - x0;
+        a.n1 = (edge - edge.dot(dir) * dir).normalized();
+        const fe::ShellSection& sec = m_.shell_sections.at(e.section);
+        a.length = 2.0 * sec.thickness;
+        a.material = sec.material;
+      }
+      const fe::Vec3 x = m_.position(n);
+      a.mid = new_node(x + 0.5 * a.length * dir);
+      a.far = new_node(x + a.length * dir);
+      anchors_.push_back(a);
+    }
+  }
+
+  void write_anchors() {
+    int k = 0;
+    for (const Anchor& a : anchors_) {
+      const std::string elset = "EA" + std::to_string(++k);
+      out_ += "** knot anchor of node " + std::to_string(id(a.node)) + "\n*ELEMENT, TYPE=B32R, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(id(a.node)) + ", " + std::to_string(a.mid) + ", " +
+              std::to_string(a.far) + "\n";
+      out_ += "*BEAM SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(a.material, Variant::massless) +
+              ", SECTION=RECT\n" + num(0.1 * a.length) + ", " + num(0.1 * a.length) + "\n" + vec_text(a.n1) + "\n";
     }
   }
 
@@ -203,7 +294,7 @@ class InputWriter {
                 std::to_string(beam_mid_[i]) + ", " + std::to_string(id(b.nodes[1])) + "\n";
       }
       const fe::BeamSection& s = m_.beam_sections.at(g.section);
-      const std::string mat = material_name(s.material, g.massless);
+      const std::string mat = material_name(s.material, g.massless ? Variant::massless : Variant::plain);
       std::string kind, dims;
       switch (s.shape) {
         case fe::SectionShape::Rectangle:
@@ -265,7 +356,7 @@ class InputWriter {
         out_ += "\n";
       }
       const fe::ShellSection& s = m_.shell_sections.at(g.section);
-      out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless) + "\n" +
+      out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless ? Variant::massless : Variant::plain) + "\n" +
               num(s.thickness) + "\n";
     }
   }
@@ -322,36 +413,55 @@ class InputWriter {
       const std::string elset = "EK" + std::to_string(++k);
       out_ += "** axial spring '" + s.id + "'\n*ELEMENT, TYPE=SPRINGA, ELSET=" + elset + "\n" +
               std::to_string(++element_) + ", " + std::to_string(a) + ", " + std::to_string(b) + "\n";
-      out_ += "*SPRING, ELSET=" + elset + "\n\n" + num(*s.axial) + "\n";
+      out_ += "*SPRING, ELSET=" + elset + "\n" + num(*s.axial) + "\n";
     }
   }
 
   // ---- rigid couplings -------------------------------------------------------
+  // Linear multipoint constraints of a rigid link (RBE2), written as
+  // *EQUATION rather than *RIGID BODY: ccx's *RIGID BODY ties only the
+  // translations of beam and shell nodes and leaves the rotation about the
+  // line undefined when the nodes are collinear (one dependent), whereas
+  // rigflex's coupling also drives the dependents' rotations. For a
+  // reference r with rotation theta (the translations of a generated
+  // rotation node q, as in ccx's ROT NODE convention) and a dependent d:
+  //   u_d - u_r - theta x (x_d - x_r) = 0   (3 equations, u_d dependent)
+  //   theta_d - theta = 0                    (if d belongs to beams/shells)
+  //   theta_r - theta = 0                    (if r belongs to beams/shells)
+  // The rotational terms of beam and shell nodes act through the knots that
+  // the anchors (make_knot_anchors) create there.
   void write_couplings() {
     for (size_t i = 0; i < m_.couplings.size(); ++i) {
       const fe::RigidCoupling& c = m_.couplings[i];
-      const std::string nset = "RB" + std::to_string(i + 1);
-      const long rot = rot_node_[i];
-      out_ += "** rigid coupling '" + c.id + "'\n*NSET, NSET=" + nset + "\n";
-      std::vector<long> ids;
-      for (fe::NodeId d : c.dependents) ids.push_back(id(d));
-      id_lines(out_, ids);
-      out_ += "*RIGID BODY, NSET=" + nset + ", REF NODE=" + std::to_string(id(c.reference)) +
-              ", ROT NODE=" + std::to_string(rot) + "\n";
-      // ccx ties only the translations of beam and shell nodes in a rigid
-      // body; their rotations follow the rigid body's through the ROT NODE.
-      std::vector<fe::NodeId> tied;
-      for (fe::NodeId d : c.dependents)
-        if (in_elements(d)) tied.push_back(d);
-      if (in_elements(c.reference)) tied.push_back(c.reference);
-      if (!tied.empty()) {
-        out_ += "*EQUATION\n";
-        for (fe::NodeId n : tied)
-          for (int r = 1; r <= 3; ++r)
-            out_ += "2\n" + std::to_string(id(n)) + ", " + std::to_string(r + 3) + ", 1., " + std::to_string(rot) +
-                    ", " + std::to_string(r) + ", -1.\n";
+      const long q = rot_node_[i], r = id(c.reference);
+      const fe::Vec3 xr = m_.position(c.reference);
+      out_ += "** rigid coupling '" + c.id + "': reference " + std::to_string(r) + ", rotation node " +
+              std::to_string(q) + "\n*EQUATION\n";
+      auto term = [](long node, int dof, double coef) {
+        return std::to_string(node) + ", " + std::to_string(dof) + ", " + num(coef);
+      };
+      for (fe::NodeId dn : c.dependents) {
+        const long d = id(dn);
+        fe::Vec3 a = m_.position(dn) - xr;
+        // Rounding residue of the mesh coordinates is not a lever arm (and
+        // ccx rejects equations with terms of ~1e-16).
+        for (int k = 0; k < 3; ++k)
+          if (std::abs(a[k]) < 1e-12 * a.norm()) a[k] = 0.0;
+        // (theta x a)_0 = theta_1 a_2 - theta_2 a_1, and cyclically.
+        for (int k = 0; k < 3; ++k) {
+          const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          std::vector<std::string> terms{term(d, k + 1, 1.0), term(r, k + 1, -1.0)};
+          if (a[k2] != 0.0) terms.push_back(term(q, k1 + 1, -a[k2]));
+          if (a[k1] != 0.0) terms.push_back(term(q, k2 + 1, a[k1]));
+          out_ += std::to_string(terms.size()) + "\n";
+          for (size_t t = 0; t < terms.size(); ++t) out_ += terms[t] + (t + 1 == terms.size() ? "\n" : ", ");
+        }
+        if (in_elements(dn))
+          for (int k = 1; k <= 3; ++k) out_ += "2\n" + term(d, k + 3, 1.0) + ", " + term(q, k, -1.0) + "\n";
       }
-      rot_of_reference_[c.reference] = rot;
+      if (in_elements(c.reference))
+        for (int k = 1; k <= 3; ++k) out_ += "2\n" + term(r, k + 3, 1.0) + ", " + term(q, k, -1.0) + "\n";
+      rot_of_reference_[c.reference] = q;
     }
   }
 
@@ -365,9 +475,10 @@ class InputWriter {
         if (!s.fixed[static_cast<size_t>(d)]) continue;
         if (d < 3) {
           b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
-        } else if (rot != rot_of_reference_.end() && !in_elements(s.node)) {
-          // rotation of a coupling reference outside any element: the
-          // rigid body's rotation lives in the ROT NODE's translations
+        } else if (rot != rot_of_reference_.end()) {
+          // rotation of a coupling reference: it lives in the rotation
+          // node's translations (the reference's own rotations, if any,
+          // are dependent DOFs of the coupling equations)
           b += std::to_string(rot->second) + ", " + std::to_string(d - 2) + ", " + std::to_string(d - 2) + "\n";
         } else if (in_elements(s.node)) {
           b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
@@ -384,6 +495,8 @@ class InputWriter {
   std::string out_;
   std::unordered_map<fe::NodeId, long> ccx_id_;
   std::unordered_set<fe::NodeId> element_node_;
+  std::unordered_map<fe::NodeId, size_t> first_beam_, first_shell_;
+  std::vector<Anchor> anchors_;
   long next_node_ = 1;
   long element_ = 0;
   std::vector<std::pair<long, fe::Vec3>> extra_nodes_;
@@ -536,6 +649,14 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
   r.max_rss_kb = usage.ru_maxrss;
 
   const std::string dat = read_text(r.dat);
+  {
+    const std::string log = read_text(r.log);
+    const auto at = log.find("number of equations");
+    if (at != std::string::npos) {
+      std::istringstream in(log.substr(at + std::string("number of equations").size()));
+      in >> r.equations;
+    }
+  }
   try {
     if (status != 0) throw std::runtime_error("exit status " + std::to_string(status));
     parse_calculix_eigenvalues(dat, r.eigenvalues, r.frequencies_hz);

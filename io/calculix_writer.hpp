@@ -9,10 +9,14 @@
 //                 a 20-node brick (C3D20R for B32R) over the section's
 //                 bounding rectangle, and models PIPE and BOX sections by
 //                 placing integration points on the walls. Reduced
-//                 integration (B32R rather than B32/C3D20) is what ccx
-//                 requires for PIPE and BOX and avoids the stiff fully
-//                 integrated brick in bending; B31 is not used because
-//                 ccx's linear beam (C3D8I expansion) refuses CIRC sections.
+//                 integration (B32R rather than B32/C3D20): ccx's PIPE and
+//                 BOX sections are integration schemes of the B32R parent
+//                 element, and one element type keeps all sections
+//                 comparable. B31 is not used: ccx's linear beam (C3D8I)
+//                 refuses CIRC sections, and a linear interpolation needs
+//                 more nodes for the same bending accuracy.
+//                 BeamTheory::EulerBernoulli has no ccx counterpart (the
+//                 solid always deforms in shear); it is written unchanged.
 //   sections   -> *BEAM SECTION RECT, CIRC, PIPE, BOX. I-sections and
 //                 general sections (A, Iy, Iz, J) have no ccx 2.20 *BEAM
 //                 SECTION equivalent for B32R (GENERAL only serves the U1
@@ -37,13 +41,17 @@
 //                 Lumped beam/shell mass is written as ccx's consistent mass.
 //   supports   -> *BOUNDARY (rotations of beam/shell nodes are constrained
 //                 by ccx through a "knot" or a mean-rotation MPC).
-//   couplings  -> *RIGID BODY, NSET=dependents, REF NODE=reference, ROT NODE=
-//                 generated node; because ccx ties only translations of beam
-//                 and shell nodes in a rigid body, the rotations of such
-//                 dependents (and of a reference that belongs to beams or
-//                 shells) are tied to the ROT NODE by *EQUATION, which makes
-//                 the coupling a full RBE2 like rigflex's. Only couplings of
-//                 all six DOFs are supported (std::invalid_argument).
+//   couplings  -> linear *EQUATIONs of a rigid link (RBE2) from the
+//                 reference to each dependent, the reference's rotation held
+//                 by a generated rotation node (ccx's ROT NODE convention);
+//                 beam and shell nodes in a coupling also get their rotations
+//                 tied, and a short, massless, free "knot anchor" beam so
+//                 that ccx gives them rotational DOFs at all (see
+//                 calculix_writer.cpp). *RIGID BODY is not used: in ccx 2.20
+//                 it ties only translations of beam and shell nodes, and
+//                 leaves the rotation about the line free when the nodes
+//                 are collinear (a single dependent). Only couplings
+//                 of all six DOFs are supported (std::invalid_argument).
 //   point mass -> MASS element; CalculiX 2.20 has no rotary inertia for MASS
 //                 elements, so a nonzero inertia throws std::invalid_argument.
 //   springs    -> SPRING1 (to ground) / SPRING2 (node to node) per
@@ -86,6 +94,7 @@ struct CalculixFrequencies {
   double wall_seconds = 0.0;           // the ccx process alone (not writing the .inp)
   double write_seconds = 0.0;          // writing job.inp
   long max_rss_kb = 0;                 // peak resident set of the ccx process (wait4)
+  long equations = 0;                  // size of ccx's (expanded, 3D) system, from its log; 0 if not found
   std::filesystem::path input, dat, log;
 };
 

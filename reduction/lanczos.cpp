@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -49,6 +50,15 @@ constexpr double kMissedEigenvalueGrowth = 1e-8;
 // In the multiplicity check, the best new Ritz value is resolved when its
 // residual is below this fraction of its distance to the lowest wanted one.
 constexpr double kResolvedGapFraction = 0.1;
+// Rounding in a Lanczos step is ~eps * ||Op v||, and so is the accuracy of
+// the eigendecomposition of H, ~eps * ||H||. While pairs with a theta far
+// above the lowest wanted one are active (rigid-body modes at a tiny shift:
+// ratios of 1e9), these absolute errors exceed tol * theta_count. Such pairs
+// converge in a step or two; they are then locked (couplings dropped, out
+// of the decomposed matrix) and the rest of the basis, written while they
+// dominated, restarts from a fresh block. The threshold keeps those errors
+// at kRoundingShare of the tolerance.
+constexpr double kRoundingShare = 1e-3;
 
 struct LanczosSettings {
   Index count = 0;
@@ -62,9 +72,10 @@ struct LanczosSettings {
 };
 
 struct RitzPairs {
-  VectorXd theta;     // descending
-  MatrixXd vectors;   // eigenvectors of H[0:p, 0:p], same order
-  VectorXd residual;  // ||H[p:p+r, 0:p] s_i||, the residual norm of Op y - theta y
+  VectorXd theta;             // descending
+  MatrixXd vectors;           // eigenvectors of H[0:p, 0:p], same order
+  VectorXd residual;          // ||H[p:p+r, 0:p] s_i||, the residual norm of Op y - theta y
+  std::vector<char> locked;   // pair is one of the locked basis vectors
 };
 
 struct LanczosOutcome {
@@ -99,10 +110,12 @@ class ShiftInvertLanczos {
   void start();
   void expand();
   RitzPairs ritz_pairs() const;
+  bool converged(const RitzPairs& ritz, Index i) const;
   Index leading_converged(const RitzPairs& ritz) const;
-  void rotate_basis(const RitzPairs& ritz, Index keep);
+  Index dominant_converged(const RitzPairs& ritz) const;
+  void restart(const RitzPairs& ritz, Index keep);
   void thick_restart(const RitzPairs& ritz);
-  void lock_and_refresh(const RitzPairs& ritz);
+  void lock_and_refresh(const RitzPairs& ritz, Index keep);
   LanczosOutcome finish(const RitzPairs& ritz, Index pairs, int restarts, bool converged,
                         std::string message);
   void report(int restarts, Index converged) const;
@@ -113,8 +126,9 @@ class ShiftInvertLanczos {
   RandomBlocks random_;
   Index n_;
   MatrixXd Q_, MQ_, H_;
-  Index p_ = 0;  // basis columns whose image under Op is represented in H
-  Index r_ = 0;  // residual block Q[:, p:p+r]; 0 when the Krylov space is exhausted
+  Index locked_ = 0;  // Q[:, 0:locked]: converged Ritz vectors, H diagonal and uncoupled there
+  Index p_ = 0;       // basis columns whose image under Op is represented in H
+  Index r_ = 0;       // residual block Q[:, p:p+r]; 0 when the Krylov space is exhausted
   long applications_ = 0;
 };
 
@@ -227,35 +241,98 @@ void ShiftInvertLanczos::expand() {
   r_ = appended;
 }
 
+// Ritz pairs of H[0:p, 0:p]: the locked pairs as they are, the active block
+// H[locked:p, locked:p] decomposed; all sorted by descending theta.
 RitzPairs ShiftInvertLanczos::ritz_pairs() const {
   RitzPairs ritz;
-  if (p_ == 0) return ritz;
-  Eigen::SelfAdjointEigenSolver<MatrixXd> eig(H_.topLeftCorner(p_, p_));
-  ritz.theta = eig.eigenvalues().reverse();
-  ritz.vectors = eig.eigenvectors().rowwise().reverse();
-  if (r_ > 0) {
-    ritz.residual = (H_.block(p_, 0, r_, p_) * ritz.vectors).colwise().norm().transpose();
-  } else {
-    ritz.residual = VectorXd::Zero(p_);
+  const Index active = p_ - locked_;
+  VectorXd theta(p_), residual = VectorXd::Zero(p_);
+  MatrixXd vectors = MatrixXd::Zero(p_, p_);
+  theta.head(locked_) = H_.diagonal().head(locked_);
+  vectors.topLeftCorner(locked_, locked_).setIdentity();
+  if (active > 0) {
+    Eigen::SelfAdjointEigenSolver<MatrixXd> eig(H_.block(locked_, locked_, active, active));
+    theta.tail(active) = eig.eigenvalues();
+    vectors.bottomRightCorner(active, active) = eig.eigenvectors();
+    if (r_ > 0) {
+      residual.tail(active) =
+          (H_.block(p_, locked_, r_, active) * eig.eigenvectors()).colwise().norm().transpose();
+    }
+  }
+  std::vector<Index> order(static_cast<size_t>(p_));
+  for (Index i = 0; i < p_; ++i) order[static_cast<size_t>(i)] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](Index a, Index b) { return theta[a] > theta[b]; });
+  ritz.theta.resize(p_);
+  ritz.residual.resize(p_);
+  ritz.vectors.resize(p_, p_);
+  ritz.locked.resize(static_cast<size_t>(p_));
+  for (Index i = 0; i < p_; ++i) {
+    const Index from = order[static_cast<size_t>(i)];
+    ritz.theta[i] = theta[from];
+    ritz.residual[i] = residual[from];
+    ritz.vectors.col(i) = vectors.col(from);
+    ritz.locked[static_cast<size_t>(i)] = from < locked_;
   }
   return ritz;
+}
+
+bool ShiftInvertLanczos::converged(const RitzPairs& ritz, Index i) const {
+  return ritz.residual[i] <= s_.tolerance * std::abs(ritz.theta[i]);
 }
 
 Index ShiftInvertLanczos::leading_converged(const RitzPairs& ritz) const {
   const Index wanted = std::min<Index>(s_.count, ritz.theta.size());
   Index k = 0;
-  while (k < wanted && ritz.residual[k] <= s_.tolerance * std::abs(ritz.theta[k])) ++k;
+  while (k < wanted && converged(ritz, k)) ++k;
   return k;
 }
 
-// Q[:, 0:keep] = Q[:, 0:p] S[:, 0:keep] (the leading Ritz vectors), with H
-// diagonal there; the residual block moves down to follow them.
-void ShiftInvertLanczos::rotate_basis(const RitzPairs& ritz, Index keep) {
-  const auto S = ritz.vectors.leftCols(keep);
-  Q_.leftCols(keep) = (Q_.leftCols(p_) * S).eval();
-  MQ_.leftCols(keep) = (MQ_.leftCols(p_) * S).eval();
+// Number of leading pairs that are converged and dominate the lowest wanted
+// theta beyond what rounding allows (see kRoundingShare); 0 if all of those
+// are locked already.
+Index ShiftInvertLanczos::dominant_converged(const RitzPairs& ritz) const {
+  const Index wanted = std::min<Index>(s_.count, ritz.theta.size());
+  if (wanted == 0) return 0;
+  const double limit = kRoundingShare * s_.tolerance / std::numeric_limits<double>::epsilon() *
+                       ritz.theta[wanted - 1];
+  Index k = 0;
+  bool unlocked = false;
+  while (k < wanted && converged(ritz, k) && ritz.theta[k] > limit) {
+    unlocked = unlocked || !ritz.locked[static_cast<size_t>(k)];
+    ++k;
+  }
+  return unlocked ? k : 0;
+}
+
+// Rotates the basis onto the leading `keep` Ritz vectors, locking the
+// converged wanted ones (first in the basis, H diagonal and uncoupled
+// there) and keeping the others with their arrowhead coupling to the
+// residual block, which moves down to follow them.
+void ShiftInvertLanczos::restart(const RitzPairs& ritz, Index keep) {
+  auto lockable = [&](Index i) { return i < s_.count && converged(ritz, i); };
+  std::vector<Index> order;
+  for (Index i = 0; i < keep; ++i) {
+    if (lockable(i)) order.push_back(i);
+  }
+  const auto newly_locked = static_cast<Index>(order.size());
+  for (Index i = 0; i < keep; ++i) {
+    if (!lockable(i)) order.push_back(i);
+  }
+  const MatrixXd S = ritz.vectors(Eigen::all, order);
+  MatrixXd coupling = H_.block(p_, 0, r_, p_) * S;
+  coupling.leftCols(newly_locked).setZero();
+  const VectorXd theta = ritz.theta(order);
+  const Index old_p = p_;
+  Q_.leftCols(keep) = (Q_.leftCols(old_p) * S).eval();
+  MQ_.leftCols(keep) = (MQ_.leftCols(old_p) * S).eval();
+  Q_.middleCols(keep, r_) = Q_.middleCols(old_p, r_).eval();
+  MQ_.middleCols(keep, r_) = MQ_.middleCols(old_p, r_).eval();
   H_.setZero();
-  H_.diagonal().head(keep) = ritz.theta.head(keep);
+  H_.diagonal().head(keep) = theta;
+  H_.block(keep, 0, r_, keep) = coupling;
+  H_.block(0, keep, keep, r_) = coupling.transpose();
+  locked_ = newly_locked;
   p_ = keep;
 }
 
@@ -263,25 +340,20 @@ void ShiftInvertLanczos::thick_restart(const RitzPairs& ritz) {
   // Keep the wanted pairs and half of the rest of the basis (Wu & Simon keep
   // a similar share): the unconverged Ritz vectors next to the wanted ones
   // carry most of the progress made so far.
-  const Index keep = std::min(s_.count + (s_.basis - s_.count) / 2, s_.basis - s_.block);
-  const MatrixXd coupling = H_.block(p_, 0, r_, p_) * ritz.vectors.leftCols(keep);
-  const Index old_p = p_;
-  rotate_basis(ritz, keep);
-  Q_.middleCols(keep, r_) = Q_.middleCols(old_p, r_).eval();
-  MQ_.middleCols(keep, r_) = MQ_.middleCols(old_p, r_).eval();
-  H_.block(keep, 0, r_, keep) = coupling;
-  H_.block(0, keep, keep, r_) = coupling.transpose();
+  restart(ritz, std::min(s_.count + (s_.basis - s_.count) / 2, s_.basis - s_.block));
 }
 
-// Locks the `count` converged pairs (their couplings, below tolerance * theta,
-// are dropped) and continues from a fresh random block orthogonal to them.
-void ShiftInvertLanczos::lock_and_refresh(const RitzPairs& ritz) {
-  rotate_basis(ritz, s_.count);
+// Locks the `keep` leading pairs (all converged) and continues from a fresh
+// random block orthogonal to them.
+void ShiftInvertLanczos::lock_and_refresh(const RitzPairs& ritz, Index keep) {
+  restart(ritz, keep);
   MatrixXd W = random_range_block(s_.block);
   const VectorXd norms = mass_norms(W);
   project_out(W, p_);
   MatrixXd B;
   r_ = append_block(W, p_, norms, B);
+  H_.block(p_, 0, H_.rows() - p_, p_).setZero();
+  H_.block(0, p_, p_, H_.cols() - p_).setZero();
 }
 
 LanczosOutcome ShiftInvertLanczos::finish(const RitzPairs& ritz, Index pairs, int restarts,
@@ -290,6 +362,24 @@ LanczosOutcome ShiftInvertLanczos::finish(const RitzPairs& ritz, Index pairs, in
   const MatrixXd MY = MQ_.leftCols(p_) * ritz.vectors.leftCols(pairs);
   LanczosOutcome out;
   out.X = apply_to_mass_product(MY);
+#ifdef LANCZOS_DEBUG
+  {
+    MatrixXd OQ = factor_.solve(MatrixXd(MQ_.leftCols(p_)));
+    MatrixXd E = OQ - Q_.leftCols(p_) * H_.topLeftCorner(p_, p_) - Q_.middleCols(p_, r_) * H_.block(p_, 0, r_, p_);
+    MatrixXd Yr = Q_.leftCols(locked_);
+    MatrixXd Ef = E - Yr * (MQ_.leftCols(locked_).transpose() * E);
+    for (Index j = 0; j < p_; ++j) fprintf(stderr, "col %ld relerr %.2e flexerr %.2e Hjj %.3e\n", (long)j, E.col(j).norm(), Ef.col(j).norm(), H_(j,j));
+    const MatrixXd Y = Q_.leftCols(p_) * ritz.vectors.leftCols(pairs);
+    for (Index i = 0; i < pairs; ++i) {
+      VectorXd res = out.X.col(i) - ritz.theta[i] * Y.col(i);
+      res -= Yr * (MQ_.leftCols(locked_).transpose() * res);
+      VectorXd Mres = M_ * res;
+      fprintf(stderr, "pair %ld theta %.6e est %.3e true(flex) %.3e locked %d\n", (long)i, ritz.theta[i], ritz.residual[i], std::sqrt(res.dot(Mres)), (int)ritz.locked[i]);
+    }
+    fprintf(stderr, "locked %ld\n", (long)locked_);
+  }
+#endif
+
   for (Index i = 0; i < pairs; ++i) out.X.col(i) /= ritz.theta[i];
   out.restarts = restarts;
   out.converged = converged;
@@ -334,12 +424,16 @@ LanczosOutcome ShiftInvertLanczos::run() {
                                             " finite eigenvalues (M is singular)");
     }
     const Index leading = leading_converged(ritz);
+    if (const Index dominant = dominant_converged(ritz); dominant > 0) {
+      lock_and_refresh(ritz, dominant);
+      continue;
+    }
     if (leading >= s_.count) {
       if (!s_.verify) return finish(ritz, s_.count, restarts, true, "converged");
       if (!verifying) {
         verifying = true;
         theta_reference = ritz.theta[s_.count - 1];
-        lock_and_refresh(ritz);
+        lock_and_refresh(ritz, s_.count);
         ++restarts;
         continue;
       }
@@ -353,7 +447,7 @@ LanczosOutcome ShiftInvertLanczos::run() {
           }
           // A missed eigenvalue entered the wanted set: check again.
           theta_reference = ritz.theta[s_.count - 1];
-          lock_and_refresh(ritz);
+          lock_and_refresh(ritz, s_.count);
           ++restarts;
           continue;
         }

@@ -161,9 +161,11 @@ TEST(ShellElement, WarpedElementKeepsRigidModes) {
   }
 }
 
-// Rotation about the normal is resisted only relative to the in-plane
-// material rotation: a pure nodal drilling rotation (no translation) costs
-// energy, and the same rotation with the matching in-plane rigid field does not.
+// Rotation about the normal is resisted relative to the in-plane material
+// rotation: a pure nodal drilling rotation (no translation) costs energy
+// (the penalty is 1e-2 G t per unit area; the bound checks it is there),
+// while the same rotation with the matching in-plane field is a rigid
+// motion (RigidMotionsProduceNoForce).
 TEST(ShellElement, DrillingStiffnessIsActive) {
   for (bool quadratic : {false, true}) {
     const std::vector<Vec3> x = quadratic ? with_midsides(distorted_corners()) : distorted_corners();

@@ -76,6 +76,18 @@ struct Steel {
   double E = 200e9, nu = 0.3, rho = 8000.0;
 };
 
+// "prefix" followed by the numbers joined by '_'. Built with += because
+// GCC 12 warns falsely (-Wrestrict, bug 105329) on "literal" + std::string.
+inline std::string label(const char* prefix, long a, long b = -1) {
+  std::string s(prefix);
+  s += std::to_string(a);
+  if (b >= 0) {
+    s += '_';
+    s += std::to_string(b);
+  }
+  return s;
+}
+
 // Model with one material "m" and one shell section "s".
 inline Model empty_model(double E, double nu, double rho, double t) {
   Model m;
@@ -108,7 +120,7 @@ inline PlateMesh plate_mesh(double a, double b, int nx, int ny, bool quadratic, 
     for (int ei = 0; ei < nx; ++ei) {
       const int i = s * ei, j = s * ej;
       ShellElement e;
-      e.id = "e" + std::to_string(ei) + "_" + std::to_string(ej);
+      e.id = label("e", ei, ej);
       e.section = "s";
       e.mass = mass;
       e.nodes = {id(i, j), id(i + s, j), id(i + s, j + s), id(i, j + s)};
@@ -132,7 +144,7 @@ inline void support_where(Model& m, const std::function<bool(const Vec3&)>& wher
           for (size_t k = 0; k < 6; ++k) s.fixed[k] = s.fixed[k] || mask[k];
           merged = true;
         }
-      if (!merged) m.supports.push_back(Support{"n" + std::to_string(n.id), n.id, mask});
+      if (!merged) m.supports.push_back(Support{label("n", n.id), n.id, mask});
     }
 }
 
@@ -147,6 +159,15 @@ struct Modes {
   }
 };
 
+// Relative residual |K x - lambda M x| / (|K x| + |lambda| |M x|); rigid
+// pairs (lambda ~ 0, K x ~ 0) are measured against K's diagonal instead.
+inline double relative_residual(const SpMat& K, const SpMat& M, const Eigen::VectorXd& x, double lambda) {
+  const Eigen::VectorXd Kx = K * x, Mx = M * x;
+  const double scale = std::max(Kx.norm() + std::abs(lambda) * Mx.norm(),
+                                1e-6 * K.diagonal().cwiseAbs().maxCoeff() * x.norm());
+  return (Kx - lambda * Mx).norm() / scale;
+}
+
 inline Modes lowest_modes(const SpMat& K, const SpMat& M, int count, double sigma = 0.0) {
   const Eigen::Index n = K.rows();
   const Eigen::Index p = std::min<Eigen::Index>(n, std::max(2 * count, count + 8));
@@ -154,37 +175,27 @@ inline Modes lowest_modes(const SpMat& K, const SpMat& M, int count, double sigm
   Eigen::SimplicialLDLT<SpMat> ldlt(A);
   EXPECT_EQ(ldlt.info(), Eigen::Success) << "factorization failed";
 
-  // Deterministic start: smooth-ish plus varied columns.
+  // Deterministic, varied start vectors.
   Eigen::MatrixXd X(n, p);
   for (Eigen::Index j = 0; j < p; ++j)
-    for (Eigen::Index i = 0; i < n; ++i) X(i, j) = std::sin(0.37 * static_cast<double>((i + 1) * (j + 1))) + 1e-3 * static_cast<double>(j == 0);
-  Eigen::VectorXd lam = Eigen::VectorXd::Zero(p), previous = Eigen::VectorXd::Constant(p, 1e300);
-  bool converged = false;
-  for (int it = 0; it < 500 && !converged; ++it) {
+    for (Eigen::Index i = 0; i < n; ++i) X(i, j) = std::sin(0.37 * static_cast<double>((i + 1) * (j + 1)));
+  Eigen::VectorXd lam;
+  // Eigenvalues converge twice as fast as vectors: iterate on the residuals
+  // of the wanted pairs. 1e-9 is above the round-off floor that the
+  // membrane-to-bending stiffness ratio sets for thin plates.
+  double worst = 1.0;
+  for (int it = 0; it < 2000 && worst > 1e-9; ++it) {
     const Eigen::MatrixXd Y = ldlt.solve(M * X);
     const Eigen::MatrixXd Kr = Y.transpose() * (K * Y), Mr = Y.transpose() * (M * Y);
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (Kr + Kr.transpose()),
                                                                  0.5 * (Mr + Mr.transpose()));
     lam = es.eigenvalues();
     X = Y * es.eigenvectors();
-    // Relative to the shifted eigenvalue, so rigid modes (lambda ~ 0) count
-    // as converged once they are round-off. The stiffness ratio of membrane
-    // to bending terms (~(L/t)^2) limits the attainable accuracy to ~1e-11.
-    const double change =
-        ((lam - previous).head(count).cwiseAbs().array() / (lam.head(count).array() - sigma).abs().max(1e-300)).maxCoeff();
-    previous = lam;
-    converged = change < 1e-10;
+    worst = 0.0;
+    for (int k = 0; k < count; ++k) worst = std::max(worst, relative_residual(K, M, X.col(k), lam(k)));
   }
-  EXPECT_TRUE(converged) << "subspace iteration did not converge";
-  Modes out{lam.head(count), X.leftCols(count)};
-  for (int k = 0; k < count; ++k) {
-    const Eigen::VectorXd x = out.vectors.col(k);
-    const double scale = (K * x).norm() + std::abs(out.lambda(k)) * (M * x).norm() + 1e-300;
-    // Rigid-body pairs have lambda ~ 0: measure them against K's scale.
-    const double kscale = std::max(scale, 1e-6 * K.diagonal().cwiseAbs().maxCoeff() * x.norm());
-    EXPECT_LT((K * x - out.lambda(k) * (M * x)).norm() / kscale, 1e-7) << "residual of mode " << k + 1;
-  }
-  return out;
+  EXPECT_LT(worst, 1e-7) << "subspace iteration: residual of the wanted eigenpairs";
+  return Modes{lam.head(count), X.leftCols(count)};
 }
 
 // Generalized eigenvalues of an assembled model, as frequencies in Hz.

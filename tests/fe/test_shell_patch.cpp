@@ -81,7 +81,7 @@ Patch make_patch(PatchKind kind, bool quadratic, double t) {
   int k = 0;
   for (const auto& e : g.elements) {
     ShellElement s;
-    s.id = "p" + std::to_string(k++);
+    s.id = label("p", k++);
     s.section = "s";
     for (int c : e) s.nodes.push_back(node(g.corners[static_cast<size_t>(c)]));
     if (quadratic)

@@ -143,7 +143,8 @@ TEST(SparseCholesky, MatrixOutsideTheAnalyzedPatternIsReanalyzed) {
 }
 
 TEST(SparseCholesky, RelativePivotFlagsNearSingularMatrices) {
-  // tridiag(-1, 4, -1): every pivot exceeds 2 + sqrt(3), i.e. 0.93 A_kk.
+  // tridiag(-1, 4, -1): elimination preserves diagonal dominance, so in any
+  // order every pivot is at least 4 - 2, half its diagonal.
   std::vector<Eigen::Triplet<double>> t;
   for (Index i = 0; i < 100; ++i) {
     t.emplace_back(i, i, 4.0);
@@ -156,7 +157,7 @@ TEST(SparseCholesky, RelativePivotFlagsNearSingularMatrices) {
   T.setFromTriplets(t.begin(), t.end());
   const FactorStatus good = SparseCholesky().factorize(T);
   ASSERT_TRUE(good.ok);
-  EXPECT_GT(good.min_relative_pivot, 0.93);
+  EXPECT_GE(good.min_relative_pivot, 0.5);
   // Free Laplacian + 1e-12 I: the last pivot is ~ 1e-12 n / 1 relative to a
   // diagonal of 2..4, far below anything a well-posed matrix shows.
   const testing::Pencil p = grid_laplacian(20, 20);

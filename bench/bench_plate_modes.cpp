@@ -1,0 +1,481 @@
+// Benchmark: the 20 lowest modes of a clamped steel plate of MITC4 shells
+// (1 m x 1 m x 10 mm, all four edges clamped, n x n elements), at about
+// 10k, 100k, 500k and 1M DOFs, against
+//   (a) the floor: one CHOLMOD factorization of K - sigma M at the same
+//       shift plus the solves the Lanczos needed (EigenResult::
+//       operator_applications right-hand sides, in blocks of the Lanczos
+//       block size), timed separately on a fresh SparseCholesky;
+//   (b) CalculiX *FREQUENCY on the same mesh (S4 shells, see
+//       io/calculix_writer.hpp), run as a child process;
+//   (c) SciPy eigsh (ARPACK shift-invert with SuperLU, Debian
+//       python3-scipy) on the same K and M (Matrix Market), same shift,
+//       run as a child process (bench/scipy_eigsh.py).
+// Targets (issue): at 100k and 1M DOFs eigen time within 1.5x of the floor,
+// at least 5x faster than CalculiX and SciPy, peak memory within 1.5x of
+// the factor's size.
+//
+// Usage:
+//   bench_plate_modes [--sizes 10k,100k,500k,1M] [--modes 20] [--block 1]
+//                     [--skip-ccx] [--skip-scipy] [--max-peer-dofs 150000]
+//                     [--ccx-threads 1] [--workdir /tmp/rigflex-bench-plate]
+//                     [--scipy-script bench/scipy_eigsh.py] [--keep]
+// Prints a markdown table on stdout, progress on stderr.
+//
+// Measurement notes:
+//   * rigflex times: "assembly" = fe::assemble (meshing not included);
+//     "eigen" = wall time of reduction::solve_lanczos, which includes its own
+//     factorization ("factor" = EigenResult::factor_seconds), the Lanczos
+//     iteration, Rayleigh-Ritz and the residual check.
+//   * "peak RSS" = VmHWM of this process from meshing to the end of
+//     solve_lanczos (reset per size through /proc/self/clear_refs), i.e.
+//     model, K, M, factor, Lanczos basis. The floor, the exports and the
+//     peers run after it is read. Peers' peak RSS comes from wait4.
+//   * ccx ratio: ccx wall time / (rigflex assembly + eigen): ccx's time
+//     includes its input parsing, shell expansion and assembly. SciPy ratio:
+//     eigsh wall time / rigflex eigen time (reading the .mtx files excluded).
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "fe/assembly.hpp"
+#include "fe/meshers.hpp"
+#include "io/calculix_writer.hpp"
+#include "reduction/eigen_solver.hpp"
+#include "reduction/sparse_cholesky.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace rigflex;
+using clock_type = std::chrono::steady_clock;
+
+double seconds_since(clock_type::time_point t0) {
+  return std::chrono::duration<double>(clock_type::now() - t0).count();
+}
+
+struct Options {
+  std::vector<long> sizes{10000, 100000};
+  int modes = 20;
+  int block = 1;
+  bool ccx = true, scipy = true, keep = false;
+  long max_peer_dofs = 150000;
+  // SPOOLES' multithreaded solve (CCX_NPROC_EQUATION_SOLVER=2) made ccx's
+  // *FREQUENCY 4x slower in CPU time on the 10k plate (16 s vs 3.6 s): the
+  // peer runs in its fastest configuration, one thread.
+  int ccx_threads = 1;
+  fs::path workdir = "/tmp/rigflex-bench-plate";
+  fs::path scipy_script = fs::path(__FILE__).parent_path() / "scipy_eigsh.py";
+};
+
+long parse_size(std::string s) {
+  double scale = 1;
+  if (!s.empty() && (s.back() == 'k' || s.back() == 'K')) scale = 1e3, s.pop_back();
+  else if (!s.empty() && (s.back() == 'm' || s.back() == 'M')) scale = 1e6, s.pop_back();
+  return std::lround(std::stod(s) * scale);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--sizes") {
+      o.sizes.clear();
+      std::istringstream in(value());
+      std::string item;
+      while (std::getline(in, item, ',')) o.sizes.push_back(parse_size(item));
+    } else if (a == "--modes") o.modes = std::stoi(value());
+    else if (a == "--block") o.block = std::stoi(value());
+    else if (a == "--skip-ccx") o.ccx = false;
+    else if (a == "--skip-scipy") o.scipy = false;
+    else if (a == "--max-peer-dofs") o.max_peer_dofs = parse_size(value());
+    else if (a == "--ccx-threads") o.ccx_threads = std::stoi(value());
+    else if (a == "--workdir") o.workdir = value();
+    else if (a == "--scipy-script") o.scipy_script = value();
+    else if (a == "--keep") o.keep = true;
+    else throw std::invalid_argument("unknown option " + a + " (see the head of bench_plate_modes.cpp)");
+  }
+  return o;
+}
+
+// ---- memory -------------------------------------------------------------
+
+long status_kb(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
+  return 0;
+}
+std::string loadavg() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+// Resets VmHWM to the current RSS (Linux >= 4.0); false if not permitted.
+bool reset_peak_rss() {
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  out.close();
+  return static_cast<bool>(out);
+}
+
+// ---- model ----------------------------------------------------------------
+
+// n x n MITC4 elements; interior nodes carry 6 DOFs: 6 (n-1)^2.
+int divisions_for(long dofs) { return static_cast<int>(std::lround(std::sqrt(dofs / 6.0))) + 1; }
+
+fe::Model clamped_plate(int n) {
+  fe::Model m;
+  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
+  m.shell_sections["plate"] = {"plate", "steel", 0.010};
+  fe::NodeMerger merger(m);
+  fe::PatchSpec p;
+  p.id = "plate";
+  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(1, 0, 0), fe::Vec3(1, 1, 0), fe::Vec3(0, 1, 0)};
+  p.nx = p.ny = n;
+  p.section = "plate";
+  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.cols; ++c)
+      if (r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1)
+        m.supports.push_back({"edge", g.at(r, c), {true, true, true, true, true, true}});
+  return m;
+}
+
+// ---- Matrix Market (lower triangle of a symmetric matrix) ------------------
+
+void write_mtx(const fe::SpMat& A, const fs::path& file) {
+  long entries = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (fe::SpMat::InnerIterator it(A, j); it; ++it)
+      if (it.row() >= j) ++entries;
+  FILE* f = std::fopen(file.c_str(), "wb");
+  if (!f) throw std::runtime_error("cannot write " + file.string());
+  std::fprintf(f, "%%%%MatrixMarket matrix coordinate real symmetric\n%ld %ld %ld\n", (long)A.rows(),
+               (long)A.cols(), entries);
+  std::vector<char> buf(1 << 20);
+  size_t used = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (fe::SpMat::InnerIterator it(A, j); it; ++it) {
+      if (it.row() < j) continue;
+      if (used + 64 > buf.size()) {
+        std::fwrite(buf.data(), 1, used, f);
+        used = 0;
+      }
+      char* p = buf.data() + used;
+      char* end = buf.data() + buf.size();
+      p = std::to_chars(p, end, static_cast<long>(it.row() + 1)).ptr;
+      *p++ = ' ';
+      p = std::to_chars(p, end, static_cast<long>(j + 1)).ptr;
+      *p++ = ' ';
+      p = std::to_chars(p, end, it.value()).ptr;
+      *p++ = '\n';
+      used = static_cast<size_t>(p - buf.data());
+    }
+  std::fwrite(buf.data(), 1, used, f);
+  if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + file.string());
+}
+
+// ---- child processes -----------------------------------------------------------
+
+struct ChildResult {
+  int status = -1;
+  double seconds = 0;
+  long max_rss_kb = 0;
+  std::string output;
+};
+
+ChildResult run_child(const std::vector<std::string>& argv, const fs::path& out_file) {
+  std::vector<std::string> store = argv;
+  std::vector<char*> args;
+  for (auto& s : store) args.push_back(s.data());
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  const fs::path err_file = out_file.string() + ".err";
+  posix_spawn_file_actions_addopen(&actions, 2, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  ChildResult r;
+  pid_t pid = 0;
+  const auto t0 = clock_type::now();
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(rc));
+  int status = 0;
+  struct rusage usage {};
+  while (::wait4(pid, &status, 0, &usage) < 0)
+    if (errno != EINTR) throw std::runtime_error("wait4 failed");
+  r.seconds = seconds_since(t0);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  r.max_rss_kb = usage.ru_maxrss;
+  std::ifstream in(out_file);
+  r.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (r.status != 0) {
+    std::ifstream err(err_file);
+    r.output += std::string(std::istreambuf_iterator<char>(err), std::istreambuf_iterator<char>());
+  }
+  return r;
+}
+
+// Minimal reader for the flat JSON line of scipy_eigsh.py.
+double json_number(const std::string& text, const std::string& key) {
+  const auto at = text.find("\"" + key + "\":");
+  if (at == std::string::npos) throw std::runtime_error("scipy output lacks " + key + ":\n" + text);
+  return std::stod(text.substr(at + key.size() + 3));
+}
+std::vector<double> json_numbers(const std::string& text, const std::string& key) {
+  const auto at = text.find("\"" + key + "\": [");
+  if (at == std::string::npos) throw std::runtime_error("scipy output lacks " + key);
+  const auto end = text.find(']', at);
+  std::istringstream in(text.substr(at + key.size() + 5, end - at - key.size() - 5));
+  std::vector<double> v;
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(std::stod(item));
+  return v;
+}
+
+double max_rel_diff(const std::vector<double>& a, const Eigen::VectorXd& ref) {
+  double d = 0;
+  for (size_t i = 0; i < a.size() && static_cast<Eigen::Index>(i) < ref.size(); ++i)
+    d = std::max(d, std::abs(a[i] - ref[static_cast<Eigen::Index>(i)]) / ref[static_cast<Eigen::Index>(i)]);
+  return d;
+}
+
+// ---- one size -------------------------------------------------------------------
+
+struct Row {
+  long dofs = 0;
+  int n = 0;
+  double mesh = 0, assembly = 0, factor = 0, eigen = 0, floor_factor = 0, floor_solves = 0;
+  double peak_mb = 0, base_mb = 0, factor_mb = 0, max_residual = 0, orthogonality = 0;
+  std::string load;
+  long applications = 0;
+  int restarts = 0, converged = 0;
+  bool peak_reset = false;
+  std::optional<double> ccx_s, ccx_rss_mb, ccx_diff, scipy_s, scipy_rss_mb, scipy_diff, scipy_residual;
+  long ccx_equations = 0;
+  std::string ccx_note, scipy_note;
+  double floor() const { return floor_factor + floor_solves; }
+};
+
+Row run_size(long target, const Options& o) {
+  Row row;
+  row.n = divisions_for(target);
+  std::cerr << "== " << target << " DOFs: " << row.n << " x " << row.n << " MITC4 elements\n";
+  row.peak_reset = reset_peak_rss();
+  row.base_mb = status_kb("VmRSS:") / 1024.0;
+  row.load = loadavg();
+  auto t0 = clock_type::now();
+  fe::Model model = clamped_plate(row.n);
+  row.mesh = seconds_since(t0);
+  t0 = clock_type::now();
+  fe::AssembledSystem sys = fe::assemble(model);
+  row.assembly = seconds_since(t0);
+  row.dofs = static_cast<long>(sys.K.rows());
+  std::cerr << "   assembled " << row.dofs << " DOFs in " << row.assembly << " s\n";
+
+  reduction::EigenOptions eo;
+  eo.count = o.modes;
+  eo.block_size = o.block;
+  eo.method = reduction::EigenMethod::lanczos;
+  t0 = clock_type::now();
+  const reduction::EigenResult r = reduction::solve_lanczos(sys.K, sys.M, eo);
+  row.eigen = seconds_since(t0);
+  row.peak_mb = status_kb("VmHWM:") / 1024.0;
+  row.factor = r.factor_seconds;
+  row.applications = r.operator_applications;
+  row.restarts = r.restarts;
+  row.converged = r.converged_count;
+  row.max_residual = r.residuals.size() ? r.residuals.maxCoeff() : NAN;
+  row.orthogonality = r.orthogonality_error;
+  if (!r.converged) std::cerr << "   WARNING: Lanczos not converged: " << r.message << "\n";
+  const Eigen::VectorXd f = r.frequencies_hz();
+  std::cerr << "   eigen " << row.eigen << " s (factor " << r.factor_seconds << " s), " << r.operator_applications
+            << " operator applications, f1 = " << f[0] << " Hz, max residual " << row.max_residual << "\n";
+
+  // (a) floor: same shift, same number of right-hand sides in the same blocks.
+  {
+    reduction::SparseCholesky floor_factor;
+    t0 = clock_type::now();
+    const reduction::FactorStatus st = floor_factor.factorize_shifted(sys.K, sys.M, r.shift);
+    row.floor_factor = seconds_since(t0);
+    if (!st.ok) throw std::runtime_error("floor factorization failed: " + st.message);
+    row.factor_mb = floor_factor.statistics().factor_bytes / (1024.0 * 1024.0);
+    const long b = std::max(1, o.block);
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Random(row.dofs, b);
+    double checksum = 0;
+    t0 = clock_type::now();
+    for (long done = 0; done < r.operator_applications; done += b) {
+      const long cols = std::min(b, r.operator_applications - done);
+      const Eigen::MatrixXd X = floor_factor.solve(Eigen::MatrixXd(B.leftCols(cols)));
+      checksum += X(0, 0);
+    }
+    row.floor_solves = seconds_since(t0);
+    if (!std::isfinite(checksum)) std::cerr << "   (non-finite floor checksum)\n";
+    std::cerr << "   floor " << row.floor() << " s (factor " << row.floor_factor << " s, solves " << row.floor_solves
+              << " s), factor " << row.factor_mb << " MB\n";
+  }
+
+  const bool peers = row.dofs <= o.max_peer_dofs;
+  const fs::path dir = o.workdir / ("n" + std::to_string(row.n));
+  fs::create_directories(dir);
+
+  // (c) SciPy on the same matrices.
+  if (o.scipy && peers) {
+    write_mtx(sys.K, dir / "K.mtx");
+    write_mtx(sys.M, dir / "M.mtx");
+    char sigma[64], tol[32];
+    std::snprintf(sigma, sizeof sigma, "%.17g", r.shift);
+    std::snprintf(tol, sizeof tol, "%.3g", eo.tolerance);
+    std::cerr << "   scipy eigsh ...\n";
+    const ChildResult c =
+        run_child({"/usr/bin/python3", o.scipy_script.string(), (dir / "K.mtx").string(), (dir / "M.mtx").string(),
+                   std::to_string(o.modes), sigma, tol},
+                  dir / "scipy.json");
+    if (c.status != 0) {
+      row.scipy_note = "failed (status " + std::to_string(c.status) + ")";
+      std::cerr << c.output << "\n";
+    } else {
+      row.scipy_s = json_number(c.output, "eigsh_seconds");
+      row.scipy_rss_mb = c.max_rss_kb / 1024.0;
+      row.scipy_residual = json_number(c.output, "max_residual");
+      row.scipy_diff = max_rel_diff(json_numbers(c.output, "frequencies_hz"), f);
+      std::cerr << "   scipy eigsh " << *row.scipy_s << " s (read " << json_number(c.output, "read_seconds")
+                << " s), peak RSS " << *row.scipy_rss_mb << " MB\n";
+    }
+  } else if (o.scipy) {
+    row.scipy_note = "skipped (> max-peer-dofs)";
+  }
+
+  // (b) CalculiX on the same mesh.
+  if (o.ccx && peers) {
+    if (!io::calculix_available()) {
+      row.ccx_note = "ccx not on PATH";
+    } else {
+      std::cerr << "   ccx ...\n";
+      io::CalculixRunOptions run;
+      run.threads = o.ccx_threads;
+      try {
+        const io::CalculixFrequencies c = io::run_calculix_frequencies(model, o.modes, dir / "ccx", run);
+        row.ccx_s = c.wall_seconds;
+        row.ccx_rss_mb = c.max_rss_kb / 1024.0;
+        row.ccx_equations = c.equations;
+        row.ccx_diff = max_rel_diff(c.frequencies_hz, f);
+        std::cerr << "   ccx " << c.wall_seconds << " s, " << c.equations << " equations, peak RSS "
+                  << *row.ccx_rss_mb << " MB\n";
+      } catch (const std::exception& e) {
+        row.ccx_note = "failed";
+        std::cerr << e.what() << "\n";
+      }
+    }
+  } else if (o.ccx) {
+    row.ccx_note = "skipped (> max-peer-dofs)";
+  }
+  if (!o.keep) fs::remove_all(dir);
+  return row;
+}
+
+std::string fmt(double v, int digits = 2) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", digits, v);
+  return b;
+}
+std::string fmt_e(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.1e", v);
+  return b;
+}
+
+void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& out) {
+  out << "\n### Clamped 1 m x 1 m x 10 mm steel plate, MITC4, " << o.modes << " modes, block size " << o.block
+            << "\n\n";
+  out << "| DOFs | n x n | assembly s | factor s | eigen s | floor s | eigen/floor | ccx s | ccx/rigflex | "
+               "scipy s | scipy/rigflex | peak RSS MB | peak - base MB | factor MB | (peak - base)/factor | max residual |\n";
+  out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) {
+    const double total = r.assembly + r.eigen;
+    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << fmt(r.assembly) << " | " << fmt(r.factor)
+              << " | " << fmt(r.eigen) << " | " << fmt(r.floor()) << " | " << fmt(r.eigen / r.floor()) << " | "
+              << (r.ccx_s ? fmt(*r.ccx_s, 1) : r.ccx_note.empty() ? "-" : r.ccx_note) << " | "
+              << (r.ccx_s ? fmt(*r.ccx_s / total, 1) : "-") << " | "
+              << (r.scipy_s ? fmt(*r.scipy_s, 1) : r.scipy_note.empty() ? "-" : r.scipy_note) << " | "
+              << (r.scipy_s ? fmt(*r.scipy_s / r.eigen, 1) : "-") << " | " << fmt(r.peak_mb, 0)
+              << (r.peak_reset ? "" : " (not reset)") << " | " << fmt(r.peak_mb - r.base_mb, 0) << " | "
+              << fmt(r.factor_mb, 0) << " | " << fmt((r.peak_mb - r.base_mb) / r.factor_mb) << " | "
+              << fmt_e(r.max_residual) << " |\n";
+  }
+  out << "\n| DOFs | mesh s | floor factor s | floor solves s | op. applications | restarts | converged | "
+               "M-orth. error | ccx equations | ccx peak RSS MB | ccx max df/f | scipy peak RSS MB | scipy max df/f "
+               "| scipy max residual | load avg |\n";
+  out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const Row& r : rows) {
+    out << "| " << r.dofs << " | " << fmt(r.mesh) << " | " << fmt(r.floor_factor) << " | " << fmt(r.floor_solves)
+              << " | " << r.applications << " | " << r.restarts << " | " << r.converged << "/" << o.modes << " | "
+              << fmt_e(r.orthogonality) << " | " << (r.ccx_equations ? std::to_string(r.ccx_equations) : "-") << " | "
+              << (r.ccx_rss_mb ? fmt(*r.ccx_rss_mb, 0) : "-") << " | " << (r.ccx_diff ? fmt_e(*r.ccx_diff) : "-")
+              << " | " << (r.scipy_rss_mb ? fmt(*r.scipy_rss_mb, 0) : "-") << " | "
+              << (r.scipy_diff ? fmt_e(*r.scipy_diff) : "-") << " | "
+              << (r.scipy_residual ? fmt_e(*r.scipy_residual) : "-") << " | " << r.load << " |\n";
+  }
+  out << "\nfloor = factorize_shifted(K, M, sigma) + (operator applications / block) solves of "
+            << o.block << " column(s) on a fresh factor; eigen = wall of solve_lanczos (its own factorization "
+               "included); ccx/rigflex = ccx wall / (assembly + eigen), ccx with "
+            << o.ccx_threads
+            << " threads, solving its expanded C3D8I model; scipy/rigflex = eigsh wall / eigen (SuperLU + "
+               "ARPACK, tol = rigflex tolerance, reading excluded); peak RSS = VmHWM from meshing to the end of "
+               "solve_lanczos, base = VmRSS before meshing (libraries, the warm-up's leftovers); peers' RSS from wait4 (scipy's includes mmread); df/f: max relative difference of "
+               "the "
+            << o.modes << " frequencies to rigflex's; load avg (1, 5, 15 min) when the size started: the machine "
+               "is shared, timings under load > 2 are inflated.\n";
+}
+
+}  // namespace
+
+// Factor and solve a small plate once, so that the first measured size does
+// not pay for first-touch allocation and BLAS thread start-up.
+void warm_up() {
+  const fe::AssembledSystem sys = fe::assemble(clamped_plate(24));
+  reduction::SparseCholesky f;
+  f.factorize_shifted(sys.K, sys.M, -1.0);
+  for (int i = 0; i < 10; ++i) f.solve(Eigen::VectorXd::Ones(sys.K.rows()));
+}
+
+int main(int argc, char** argv) {
+  try {
+    const Options o = parse(argc, argv);
+    warm_up();
+    std::vector<Row> rows;
+    for (long size : o.sizes) {
+      rows.push_back(run_size(size, o));
+      print_tables(rows, o, std::cerr);  // so that a long run reports as it goes
+    }
+    print_tables(rows, o, std::cout);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "bench_plate_modes: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,123 @@
+// The rigflex command line end to end: the bundled examples, the output
+// files, bad input and mechanisms.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+  int code = 0;
+  std::string out;
+};
+
+CliRun run(const std::string& args) {
+  const std::string cmd = std::string(RIGFLEX_CLI) + " " + args + " 2>&1";
+  CliRun r;
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("rigflex_cli_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  return d;
+}
+
+std::string example(const std::string& name) { return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml"; }
+
+fs::path write_model(const std::string& name, const std::string& text) {
+  const fs::path p = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + ".yaml");
+  std::ofstream(p) << text;
+  return p;
+}
+
+TEST(Cli, ModesOfTheBeamFrameExampleWritesJsonAndParaViewFiles) {
+  const fs::path out = fresh_dir("beam");
+  const CliRun r = run("modes " + example("beam-frame") + " --count 6 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("mode"), std::string::npos);
+  std::ifstream in(out / "modes.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["frequencies_hz"].size(), 6u);
+  for (size_t k = 1; k < 6; ++k) EXPECT_GE(j["frequencies_hz"][k].get<double>(), j["frequencies_hz"][k - 1].get<double>());
+  ASSERT_TRUE(j["modes"][0].contains("effective_mass_fraction"));
+  double sum_tx = 0;
+  for (const auto& m : j["modes"]) sum_tx += m["effective_mass_fraction"]["TX"].get<double>();
+  EXPECT_GT(sum_tx, 0.0);
+  EXPECT_LE(sum_tx, 1.0 + 1e-9);  // fractions of the total cannot exceed it
+  EXPECT_TRUE(fs::exists(out / "modes.pvd"));
+  for (int k = 1; k <= 6; ++k) EXPECT_TRUE(fs::exists(out / ("mode_00" + std::to_string(k) + ".vtu")));
+  for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos);
+  std::ifstream vtu(out / "mode_001.vtu");
+  std::stringstream ss;
+  ss << vtu.rdbuf();
+  EXPECT_NE(ss.str().find("UnstructuredGrid"), std::string::npos);
+  EXPECT_NE(ss.str().find("frequency_hz"), std::string::npos);
+  fs::remove_all(out);
+}
+
+TEST(Cli, ModesOfTheShellPlateExample) {
+  const fs::path out = fresh_dir("plate");
+  const CliRun r = run("modes " + example("shell-plate") + " --count 4 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_TRUE(fs::exists(out / "mode_004.vtu"));
+  fs::remove_all(out);
+}
+
+TEST(Cli, MassPrintsTheSpecRecord) {
+  const CliRun r = run("mass --json " + example("shell-plate"));
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  // 2 x 1 x 0.012 m of steel plus the 40 kg block.
+  EXPECT_NEAR(j["mass"].get<double>(), 2.0 * 1.0 * 0.012 * 7850 + 40.0, 1e-9);
+  EXPECT_EQ(j["inertia"].size(), 6u);
+}
+
+TEST(Cli, BadInputNamesFileLineAndKeyAndWritesNothing) {
+  const fs::path model = write_model("bad", "materials:\n  steel: {E: 2.1e11, nu: 0.3, rho: 7850, colour: 1}\n");
+  const fs::path out = fresh_dir("bad");
+  const CliRun r = run("modes " + model.string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find(model.string() + ":2: key 'colour'"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Cli, MechanismIsReportedWithItsFreeDofs) {
+  // A massless member that nothing holds: its rigid motions have neither
+  // stiffness nor mass, so K - sigma M is singular for every shift.
+  const fs::path model = write_model("mech", R"(materials:
+  steel: {E: 2.1e11, nu: 0.3, rho: 7850}
+beam_sections:
+  b: {material: steel, shape: circle, diameter: 0.05}
+nodes:
+  - [1, 0, 0, 0]
+  - [2, 1, 0, 0]
+  - [3, 0, 1, 0]
+  - [4, 1, 1, 0]
+beams:
+  - {id: held, nodes: [1, 2], section: b}
+  - {id: loose, nodes: [3, 4], section: b, mass: none}
+supports:
+  - {node: 1, dofs: all}
+)");
+  const fs::path out = fresh_dir("mech");
+  const CliRun r = run("modes " + model.string() + " --count 2 --quiet --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("mechanism"), std::string::npos) << r.out;
+  for (const char* dof : {"node 3 UY", "node 4 UZ"}) EXPECT_NE(r.out.find(dof), std::string::npos) << dof << "\n" << r.out;
+  EXPECT_EQ(r.out.find("node 2 "), std::string::npos) << r.out;  // the held member is not part of it
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
