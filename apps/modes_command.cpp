@@ -24,14 +24,15 @@ struct ModesArgs {
 
 void print_table(const reduction::ModalAnalysis& a) {
   const auto& s = a.summary;
-  std::printf("%5s %14s %14s %7s %7s %7s %7s %7s %7s %10s\n", "mode", "f [Hz]", "modal mass", "TX", "TY", "TZ", "RX",
-              "RY", "RZ", "residual");
+  std::printf("%5s %14s %14s %7s %7s %7s %7s %7s %7s %10s %10s\n", "mode", "f [Hz]", "modal mass", "TX", "TY", "TZ",
+              "RX", "RY", "RZ", "residual", "backward");
   for (Eigen::Index k = 0; k < s.frequencies_hz.size(); ++k) {
     std::printf("%5ld %14.6f %14.6g", static_cast<long>(k + 1), s.frequencies_hz(k), s.modal_mass(k));
     for (int d = 0; d < 6; ++d) std::printf(" %7.4f", s.effective_mass_fraction(k, d));
-    std::printf(" %10.2e\n", a.result.residuals(k));
+    std::printf(" %10.2e %10.2e\n", a.result.residuals(k), a.result.backward_errors(k));
   }
   std::printf("effective mass fractions of the total in each rigid direction (rotations about the CoG)\n");
+  std::printf("residual ||Kx - lMx|| / ||Kx||; backward ||Kx - lMx|| / ((||K|| + |l| ||M||) ||x||)\n");
   std::printf("M-orthonormality error max|X'MX - I| = %.2e\n", a.result.orthogonality_error);
 }
 

@@ -28,13 +28,13 @@ inline int dof(int node, int local) { return 6 * node + local; }
 // clockwise numbering only flips the normal); e1 points from the middle of
 // edge 4-1 to the middle of edge 2-3, projected into the mean plane.
 struct LocalFrame {
-  Matrix3d R;              // rows e1, e2, e3: local vector = R * global vector
-  Vec3 origin;             // centroid of the corners
-  Eigen::MatrixX2d xy;     // nodes projected onto the mean plane, local coords
-  VectorXd z;              // signed distance of each node from the mean plane
-  double area = 0.0;       // area of the projected corner quadrilateral
-  double length() const;   // sqrt(area): the element size used for ratios
-  double max_warp() const; // max |z| / length()
+  Matrix3d R;               // rows e1, e2, e3: local vector = R * global vector
+  Vec3 origin;              // centroid of the corners
+  Eigen::MatrixX2d xy;      // nodes projected onto the mean plane, local coords
+  VectorXd z;               // signed distance of each node from the mean plane
+  double area = 0.0;        // area of the projected corner quadrilateral
+  double length() const;    // sqrt(area): the element size used for ratios
+  double max_warp() const;  // max |z| / length()
 };
 
 // Throws std::invalid_argument unless x holds 4 or 8 finite points.

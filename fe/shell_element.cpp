@@ -1,5 +1,7 @@
 // Geometry checks for the flat shell elements (the element matrices are in
 // shell_mitc4.cpp and shell_quad8.cpp).
+#include "fe/shell_element.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -8,7 +10,6 @@
 
 #include "fe/error.hpp"
 #include "fe/shell_common.hpp"
-#include "fe/shell_element.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -73,8 +74,7 @@ void check_jacobian(const LocalFrame& f, const std::string& id) {
 }  // namespace
 
 void check_shell_geometry(const std::vector<Vec3>& x, const std::string& element_id) {
-  if (x.size() != 4 && x.size() != 8)
-    fail(element_id, "needs 4 or 8 nodes, has " + std::to_string(x.size()));
+  if (x.size() != 4 && x.size() != 8) fail(element_id, "needs 4 or 8 nodes, has " + std::to_string(x.size()));
   for (const Vec3& p : x)
     if (!p.allFinite()) fail(element_id, "non-finite node coordinate");
   check_coincident(x, element_id);
@@ -83,9 +83,8 @@ void check_shell_geometry(const std::vector<Vec3>& x, const std::string& element
   const LocalFrame f = make_local_frame(x);
   if (f.max_warp() > kMaxWarp) {
     std::ostringstream msg;
-    msg << "warped: nodes lie up to " << f.max_warp() * 100.0
-        << " % of the element size off the mean plane (limit " << kMaxWarp * 100.0
-        << " %); refine the mesh on curved or twisted surfaces";
+    msg << "warped: nodes lie up to " << f.max_warp() * 100.0 << " % of the element size off the mean plane (limit "
+        << kMaxWarp * 100.0 << " %); refine the mesh on curved or twisted surfaces";
     fail(element_id, msg.str());
   }
   check_jacobian(f, element_id);

@@ -24,7 +24,8 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
                      {"eigenvalue", r.eigenvalues(k)},
                      {"modal_mass", s.modal_mass(k)},
                      {"effective_mass_fraction", frac},
-                     {"residual", r.residuals(k)}});
+                     {"residual", r.residuals(k)},
+                     {"backward_error", r.backward_errors(k)}});
   }
   return {{"model", model_name},
           {"dofs", a.system.dofs.free_count()},
@@ -38,6 +39,7 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
             {"restarts", r.restarts},
             {"operator_applications", r.operator_applications},
             {"max_residual", r.residuals.size() ? r.residuals.maxCoeff() : 0.0},
+            {"max_backward_error", r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0},
             {"orthogonality_error", r.orthogonality_error},
             {"message", r.message}}},
           {"frequencies_hz", freqs},

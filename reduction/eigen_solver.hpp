@@ -76,6 +76,13 @@ struct EigenResult {
   // ~1e-16 lambda_max / lambda. Values <= 1 for rigid-body modes and
   // <= 1e-8 for the others indicate pairs correct to working precision.
   Eigen::VectorXd residuals;
+  // Per pair: the normwise backward error of the generalized problem,
+  // ||K x - lambda M x|| / ((||K||_1 + |lambda| ||M||_1) ||x||) (Higham &
+  // Higham 1998): the smallest relative perturbation of K and M for which
+  // the pair is exact. Scale-free and meaningful for rigid-body modes and for
+  // ill-conditioned models alike, where the ratio above reaches only
+  // eps ||K|| / ||K x||.
+  Eigen::VectorXd backward_errors;
   double orthogonality_error = 0;  // max |X' M X - I|
   double shift = 0;
   int restarts = 0;

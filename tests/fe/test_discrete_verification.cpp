@@ -17,7 +17,12 @@ reduction::ModalAnalysis solve(const fe::Model& m, int count) {
   opt.count = count;
   auto a = reduction::run_modal_analysis(m, opt);
   EXPECT_TRUE(a.result.converged) << a.result.message;
-  EXPECT_LT(a.result.residuals.maxCoeff(), 1e-8);
+  // Backward error: the pair is exact for K, M perturbed by this much
+  // (relative). The Lanczos accepts a Ritz pair at the default tolerance
+  // 1e-10 on the transformed problem, which bounds it at that level. The
+  // plain ratio ||Kx - lMx|| / ||Kx|| is not usable here: K x of a rigid-body
+  // mode is rounding noise, and the portal frame's K has a condition ~1e8.
+  EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);
   EXPECT_LT(a.result.orthogonality_error, 1e-10);
   return a;
 }

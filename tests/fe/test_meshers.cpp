@@ -14,6 +14,8 @@ Eigen::VectorXd lowest_hz(const fe::Model& m, int count) {
   opt.count = count;
   const auto a = reduction::run_modal_analysis(m, opt);
   EXPECT_TRUE(a.result.converged) << a.result.message;
+  EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);  // see test_beam_verification.cpp
+  EXPECT_LT(a.result.orthogonality_error, 1e-10);
   return a.summary.frequencies_hz;
 }
 

@@ -49,7 +49,8 @@ Box make_box(int n, int m, bool quadratic) {
   for (int ej = 0; ej < m; ++ej)
     for (int ei = 0; ei < 4 * n; ++ei) {
       const int i = s * ei, j = s * ej;
-      ShellElement e{label("b", ei, ej), {id(i, j), id(i + s, j), id(i + s, j + s), id(i, j + s)}, "s", MassKind::Consistent};
+      ShellElement e{
+          label("b", ei, ej), {id(i, j), id(i + s, j), id(i + s, j + s), id(i, j + s)}, "s", MassKind::Consistent};
       if (quadratic) e.nodes.insert(e.nodes.end(), {id(i + 1, j), id(i + 2, j + 1), id(i + 1, j + 2), id(i, j + 1)});
       b.model.shells.push_back(e);
     }

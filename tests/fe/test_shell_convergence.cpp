@@ -93,13 +93,12 @@ TEST(ShellConvergence, ThinClampedPlateDoesNotLock) {
     for (double t : {1e-2, 1e-3, 1e-4}) {
       PlateMesh pm = plate_mesh(a, a, 8, 8, quadratic, kE, kNu, kRho, t);
       constexpr double tol = 1e-9;
-      support_where(
-          pm.model,
-          [&](const Vec3& x) {
-            return std::abs(x.x()) < tol || std::abs(x.x() - a) < tol || std::abs(x.y()) < tol ||
-                   std::abs(x.y() - a) < tol;
-          },
-          {true, true, true, true, true, true});
+      support_where(pm.model,
+                    [&](const Vec3& x) {
+                      return std::abs(x.x()) < tol || std::abs(x.x() - a) < tol || std::abs(x.y()) < tol ||
+                             std::abs(x.y() - a) < tol;
+                    },
+                    {true, true, true, true, true, true});
       const double f = model_frequencies(pm.model, 1)(0);
       ratio.push_back(f / kirchhoff_frequency(35.985, a, kE, kNu, kRho, t));
       std::printf("  CCCC 8x8 %s t/L=%.0e: f1/f_Kirchhoff - 1 = %+.3e\n", quadratic ? "Quad8" : "MITC4", t,

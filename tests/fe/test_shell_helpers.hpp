@@ -154,17 +154,15 @@ inline void support_where(Model& m, const std::function<bool(const Vec3&)>& wher
 struct Modes {
   Eigen::VectorXd lambda;
   Eigen::MatrixXd vectors;
-  Eigen::VectorXd frequencies_hz() const {
-    return lambda.cwiseMax(0.0).cwiseSqrt() / (2.0 * pi);
-  }
+  Eigen::VectorXd frequencies_hz() const { return lambda.cwiseMax(0.0).cwiseSqrt() / (2.0 * pi); }
 };
 
 // Relative residual |K x - lambda M x| / (|K x| + |lambda| |M x|); rigid
 // pairs (lambda ~ 0, K x ~ 0) are measured against K's diagonal instead.
 inline double relative_residual(const SpMat& K, const SpMat& M, const Eigen::VectorXd& x, double lambda) {
   const Eigen::VectorXd Kx = K * x, Mx = M * x;
-  const double scale = std::max(Kx.norm() + std::abs(lambda) * Mx.norm(),
-                                1e-6 * K.diagonal().cwiseAbs().maxCoeff() * x.norm());
+  const double scale =
+      std::max(Kx.norm() + std::abs(lambda) * Mx.norm(), 1e-6 * K.diagonal().cwiseAbs().maxCoeff() * x.norm());
   return (Kx - lambda * Mx).norm() / scale;
 }
 

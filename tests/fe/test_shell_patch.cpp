@@ -24,7 +24,7 @@ enum class PatchKind {
 
 struct Patch {
   Model model;
-  std::vector<bool> on_boundary;  // per model node index
+  std::vector<bool> on_boundary;       // per model node index
   std::vector<Eigen::Vector2d> local;  // in-plane position per model node index
 };
 
@@ -52,7 +52,8 @@ PatchGeometry patch_geometry(PatchKind kind) {
   const std::array<double, 4> a{0.0, 0.07, 0.15, 0.24}, b{0.0, 0.03, 0.08, 0.12};
   const double s = 0.3;  // skew: x = a_i + s y
   for (int j = 0; j < 4; ++j)
-    for (int i = 0; i < 4; ++i) g.corners.push_back({a[static_cast<size_t>(i)] + s * b[static_cast<size_t>(j)], b[static_cast<size_t>(j)]});
+    for (int i = 0; i < 4; ++i)
+      g.corners.push_back({a[static_cast<size_t>(i)] + s * b[static_cast<size_t>(j)], b[static_cast<size_t>(j)]});
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 3; ++i) g.elements.push_back({4 * j + i, 4 * j + i + 1, 4 * (j + 1) + i + 1, 4 * (j + 1) + i});
   g.skew = true;
@@ -86,7 +87,8 @@ Patch make_patch(PatchKind kind, bool quadratic, double t) {
     for (int c : e) s.nodes.push_back(node(g.corners[static_cast<size_t>(c)]));
     if (quadratic)
       for (size_t c = 0; c < 4; ++c)
-        s.nodes.push_back(node(0.5 * (g.corners[static_cast<size_t>(e[c])] + g.corners[static_cast<size_t>(e[(c + 1) % 4])])));
+        s.nodes.push_back(
+            node(0.5 * (g.corners[static_cast<size_t>(e[c])] + g.corners[static_cast<size_t>(e[(c + 1) % 4])])));
     p.model.shells.push_back(s);
   }
   return p;
@@ -170,7 +172,8 @@ VectorXd boundary_forces(const std::vector<Eigen::Vector2d>& xy, const ExactStat
   }
   VectorXd global(local.size());
   for (size_t i = 0; i < n; ++i)
-    global.segment<6>(static_cast<Eigen::Index>(6 * i)) = global_dofs(local.segment<6>(static_cast<Eigen::Index>(6 * i)));
+    global.segment<6>(static_cast<Eigen::Index>(6 * i)) =
+        global_dofs(local.segment<6>(static_cast<Eigen::Index>(6 * i)));
   return global;
 }
 
@@ -187,7 +190,8 @@ PatchResult run_patch(PatchKind kind, bool quadratic, const ExactState& state, d
   const auto nn = static_cast<Eigen::Index>(p.model.nodes.size());
 
   VectorXd exact(6 * nn);
-  for (Eigen::Index i = 0; i < nn; ++i) exact.segment<6>(6 * i) = global_dofs(state.field(p.local[static_cast<size_t>(i)]));
+  for (Eigen::Index i = 0; i < nn; ++i)
+    exact.segment<6>(6 * i) = global_dofs(state.field(p.local[static_cast<size_t>(i)]));
 
   std::vector<Eigen::Index> inner, outer;
   for (Eigen::Index i = 0; i < nn; ++i)
@@ -196,8 +200,10 @@ PatchResult run_patch(PatchKind kind, bool quadratic, const ExactState& state, d
   MatrixXd Kii(inner.size(), inner.size()), Kib(inner.size(), outer.size());
   VectorXd ub(outer.size());
   for (size_t r = 0; r < inner.size(); ++r) {
-    for (size_t c = 0; c < inner.size(); ++c) Kii(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = K(inner[r], inner[c]);
-    for (size_t c = 0; c < outer.size(); ++c) Kib(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = K(inner[r], outer[c]);
+    for (size_t c = 0; c < inner.size(); ++c)
+      Kii(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = K(inner[r], inner[c]);
+    for (size_t c = 0; c < outer.size(); ++c)
+      Kib(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = K(inner[r], outer[c]);
   }
   for (size_t c = 0; c < outer.size(); ++c) ub(static_cast<Eigen::Index>(c)) = exact(outer[c]);
   const VectorXd ui = Kii.ldlt().solve(-Kib * ub);
@@ -205,7 +211,8 @@ PatchResult run_patch(PatchKind kind, bool quadratic, const ExactState& state, d
   PatchResult res;
   const double scale = exact.cwiseAbs().maxCoeff();
   for (size_t r = 0; r < inner.size(); ++r)
-    res.interior_error = std::max(res.interior_error, std::abs(ui(static_cast<Eigen::Index>(r)) - exact(inner[r])) / scale);
+    res.interior_error =
+        std::max(res.interior_error, std::abs(ui(static_cast<Eigen::Index>(r)) - exact(inner[r])) / scale);
 
   for (const ShellElement& e : p.model.shells) {
     std::vector<Vec3> x;
@@ -232,7 +239,8 @@ struct PatchCase {
 
 std::string patch_name(const ::testing::TestParamInfo<PatchCase>& info) {
   const PatchCase& c = info.param;
-  return std::string(c.quadratic ? "Quad8" : "MITC4") + (c.kind == PatchKind::MacNealHarder ? "_MacNealHarder" : "_Skewed") +
+  return std::string(c.quadratic ? "Quad8" : "MITC4") +
+         (c.kind == PatchKind::MacNealHarder ? "_MacNealHarder" : "_Skewed") +
          (c.thickness < 1e-3 ? "_thin" : "_thick");
 }
 

@@ -74,9 +74,11 @@ void compare(const char* name, const Study& s, const StudyResult& r, const std::
   for (const test::Target& t : targets) {
     const auto k = static_cast<Eigen::Index>(t.mode - 1);
     auto err = [&](const Eigen::VectorXd& f) { return (f(k) - t.freq_hz) / t.freq_hz; };
-    std::printf("  %-9s %s mode %d target %9.4f Hz | %2dx: %9.4f (%+.3f %%) | %2dx: %9.4f (%+.3f %%) | extrap. %9.4f (%+.3f %%)\n",
-                name, s.quadratic ? "Quad8" : "MITC4", t.mode, t.freq_hz, s.n, r.coarse(k), 100 * err(r.coarse), 2 * s.n,
-                r.fine(k), 100 * err(r.fine), r.extrapolated(k), 100 * err(r.extrapolated));
+    std::printf(
+        "  %-9s %s mode %d target %9.4f Hz | %2dx: %9.4f (%+.3f %%) | %2dx: %9.4f (%+.3f %%) | extrap. %9.4f (%+.3f "
+        "%%)\n",
+        name, s.quadratic ? "Quad8" : "MITC4", t.mode, t.freq_hz, s.n, r.coarse(k), 100 * err(r.coarse), 2 * s.n,
+        r.fine(k), 100 * err(r.fine), r.extrapolated(k), 100 * err(r.extrapolated));
     const char* element = s.quadratic ? " Quad8" : " MITC4";
     EXPECT_LT(std::abs(err(r.fine)), fine_tol) << name << " mode " << t.mode << element;
     EXPECT_LT(std::abs(err(r.extrapolated)), target_tol) << name << " mode " << t.mode << element << " (extrapolated)";
@@ -131,14 +133,13 @@ TEST(ShellVerification, CodeAsterSdls03RectangularPlate) {
   const PlateCase c = read_case(file);
   const auto targets = test::verification_targets(file);
   const Restrain support = [&](Model& m) {
-    support_where(
-        m, [&](const Vec3& x) { return on_edge_x(x, c.a) || on_edge_y(x, c.b); }, {false, false, true, false, false, false});
+    support_where(m, [&](const Vec3& x) { return on_edge_x(x, c.a) || on_edge_y(x, c.b); },
+                  {false, false, true, false, false, false});
   };
   const double sigma = -std::pow(2.0 * pi * targets.front().freq_hz, 2);  // K is singular
   for (const Study& s : kStudies) {
     const StudyResult r = run_study(c, s, support, highest_mode(targets), sigma);
-    for (int k = 0; k < 3; ++k)
-      EXPECT_LT(r.fine(k), 1e-4 * targets.front().freq_hz) << "in-plane rigid mode " << k + 1;
+    for (int k = 0; k < 3; ++k) EXPECT_LT(r.fine(k), 1e-4 * targets.front().freq_hz) << "in-plane rigid mode " << k + 1;
     compare("SDLS03", s, r, targets, 1.5e-2, 5e-3);
   }
 }
@@ -152,8 +153,8 @@ TEST(ShellVerification, ClampedSquarePlateBirger) {
   const PlateCase c = read_case(file);
   const auto targets = test::verification_targets(file);
   const Restrain clamp = [&](Model& m) {
-    support_where(
-        m, [&](const Vec3& x) { return on_edge_x(x, c.a) || on_edge_y(x, c.b); }, {true, true, true, true, true, true});
+    support_where(m, [&](const Vec3& x) { return on_edge_x(x, c.a) || on_edge_y(x, c.b); },
+                  {true, true, true, true, true, true});
   };
   for (const Study& s : kStudies)
     compare("CCCC", s, run_study(c, s, clamp, highest_mode(targets), 0.0), targets, 3e-2, 1.5e-2);
