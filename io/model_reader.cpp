@@ -299,9 +299,7 @@ class Reader {
     s.rotary_inertia = c_.boolean_or(n, "rotary_inertia", true);
     generated(n, s.id, [&] {
       fe::NodeMerger merger(m_, kNodeTolerance);
-      const size_t first = m_.beams.size();
       fe::mesh_member(m_, merger, s);
-      for (size_t i = first; i < m_.beams.size(); ++i) src_.add("beam", m_.beams[i].id, n);
     });
   }
   void patch(const YAML::Node& n) {
@@ -317,9 +315,7 @@ class Reader {
     s.mass = mass_kind(n);
     generated(n, s.id, [&] {
       fe::NodeMerger merger(m_, kNodeTolerance);
-      const size_t first = m_.shells.size();
       fe::mesh_shell_patch(m_, merger, s);
-      for (size_t i = first; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
     });
   }
   void box_girder(const YAML::Node& n) {
@@ -347,10 +343,7 @@ class Reader {
     s.mass = mass_kind(n);
     generated(n, s.id, [&] {
       fe::NodeMerger merger(m_, kNodeTolerance);
-      const size_t first = m_.shells.size(), first_c = m_.couplings.size();
       fe::mesh_box_girder(m_, merger, s);
-      for (size_t i = first; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
-      for (size_t i = first_c; i < m_.couplings.size(); ++i) src_.add("coupling", m_.couplings[i].id, n);
       src_.add("shell_section", s.id + ".web", n);
       src_.add("shell_section", s.id + ".flange", n);
     });
@@ -395,10 +388,12 @@ class Reader {
     s.joint_set = c_.text_or(n, "joint_set", s.joint_set);
     generated(n, s.id, [&] { fe::build_carrying_frame(m_, s); });
   }
-  // Mesher errors and the generated entities point at the generator's entry.
+  // Mesher errors, and errors later found in the entities a generator made,
+  // point at the generator's entry.
   template <class F>
   void generated(const YAML::Node& n, const std::string& id, F f) {
-    const size_t beams0 = m_.beams.size(), couplings0 = m_.couplings.size();
+    const size_t beams0 = m_.beams.size(), shells0 = m_.shells.size(), couplings0 = m_.couplings.size(),
+                 supports0 = m_.supports.size();
     try {
       f();
     } catch (const fe::ModelError& e) {
@@ -406,8 +401,9 @@ class Reader {
       c_.fail(at, e.where().key.empty() ? id : e.where().key, e.what());
     }
     for (size_t i = beams0; i < m_.beams.size(); ++i) src_.add("beam", m_.beams[i].id, n);
+    for (size_t i = shells0; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
     for (size_t i = couplings0; i < m_.couplings.size(); ++i) src_.add("coupling", m_.couplings[i].id, n);
-    for (const auto& s : m_.supports) src_.add("support", s.id, n);
+    for (size_t i = supports0; i < m_.supports.size(); ++i) src_.add("support", m_.supports[i].id, n);
   }
   void node_set(const std::string& name, const YAML::Node& n) {
     index_ = "node_sets." + name;
