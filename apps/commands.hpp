@@ -6,5 +6,6 @@ namespace rigflex::app {
 
 void add_mass_command(CLI::App& app, int& exit_code);
 void add_modes_command(CLI::App& app, int& exit_code);
+void add_reduce_command(CLI::App& app, int& exit_code);
 
 }  // namespace rigflex::app

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   int exit_code = 0;
   rigflex::app::add_mass_command(app, exit_code);
   rigflex::app::add_modes_command(app, exit_code);
+  rigflex::app::add_reduce_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -20,6 +20,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -83,11 +84,23 @@ class InputWriter {
     write_springs();
     write_couplings();
     write_boundaries();
-    out_ += "*STEP\n*FREQUENCY\n" + std::to_string(opt_.modes) + "\n";
-    if (opt_.write_node_file) out_ += "*NODE FILE\nU\n";
-    out_ += "*END STEP\n";
+    if (opt_.matrix_storage) {
+      // ccx stores K and M where it would factorize them and stops there:
+      // no eigenvalues, no results, so no *NODE FILE.
+      out_ += "*STEP\n*FREQUENCY, SOLVER=MATRIXSTORAGE\n" + std::to_string(opt_.modes) + "\n*END STEP\n";
+    } else {
+      out_ += "*STEP\n*FREQUENCY\n" + std::to_string(opt_.modes) + "\n";
+      if (opt_.write_node_file) out_ += "*NODE FILE\nU\n";
+      out_ += "*END STEP\n";
+    }
     return std::move(out_);
   }
+
+  // After write(): the ccx number of every model node, and the first number
+  // after the writer's own nodes (ccx numbers the nodes it generates from
+  // there on).
+  const std::unordered_map<fe::NodeId, long>& ccx_ids() const { return ccx_id_; }
+  long first_free_node() const { return next_node_; }
 
  private:
   // ---- numbering -------------------------------------------------------
@@ -608,6 +621,23 @@ int run_child(const std::vector<std::string>& argv, const fs::path& dir, const f
   return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
+void check_run_options(const CalculixRunOptions& run) {
+  if (run.job.empty() || run.job.find('/') != std::string::npos)
+    throw std::invalid_argument("CalculixRunOptions::job must be a plain file name");
+  if (run.threads < 0) throw std::invalid_argument("CalculixRunOptions::threads must be non-negative");
+}
+
+std::vector<std::string> child_environment(const CalculixRunOptions& run) {
+  std::vector<std::string> env;
+  if (run.threads > 0) {
+    const std::string t = std::to_string(run.threads);
+    for (const char* key : {"OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
+                            "CCX_NPROC_RESULTS", "OPENBLAS_NUM_THREADS"})
+      env.push_back(std::string(key) + "=" + t);
+  }
+  return env;
+}
+
 }  // namespace
 
 CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir) {
@@ -616,9 +646,7 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
 
 CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir,
                                              const CalculixRunOptions& run) {
-  if (run.job.empty() || run.job.find('/') != std::string::npos)
-    throw std::invalid_argument("CalculixRunOptions::job must be a plain file name");
-  if (run.threads < 0) throw std::invalid_argument("CalculixRunOptions::threads must be non-negative");
+  check_run_options(run);
   CalculixOptions opt;
   opt.modes = count;
   opt.heading = "rigflex cross-check";
@@ -635,16 +663,9 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
   std::error_code ec;
   fs::remove(r.dat, ec);  // never read a stale table
 
-  std::vector<std::string> env;
-  if (run.threads > 0) {
-    const std::string t = std::to_string(run.threads);
-    for (const char* key : {"OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
-                            "CCX_NPROC_RESULTS", "OPENBLAS_NUM_THREADS"})
-      env.push_back(std::string(key) + "=" + t);
-  }
   struct rusage usage {};
   t0 = clock::now();
-  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, env, usage);
+  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, child_environment(run), usage);
   r.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.max_rss_kb = usage.ru_maxrss;
 
@@ -664,6 +685,195 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
     throw std::runtime_error("CalculiX run in " + work_dir.string() + " failed (" + e.what() + "); see " +
                              r.log.string() + ":\n" + tail_of(r.log, 1500));
   }
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// ccx's matrices (SOLVER=MATRIXSTORAGE)
+
+namespace {
+
+// Lines of `text` with their 1-based numbers; blank lines are skipped.
+template <typename F>
+void for_each_line(const std::string& text, F&& f) {
+  size_t start = 0;
+  long number = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    ++number;
+    std::string_view line(text.data() + start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.find_first_not_of(" \t") != std::string_view::npos) f(line, number);
+    start = end + 1;
+  }
+}
+
+[[noreturn]] void bad_line(const std::string& file, long line, const std::string& what, std::string_view text) {
+  throw std::runtime_error(file + ":" + std::to_string(line) + ": " + what + ", got '" +
+                           std::string(text.substr(0, 80)) + "'");
+}
+
+// The next blank-separated field of `rest`, which is advanced past it.
+std::string_view next_field(std::string_view& rest) {
+  const size_t b = rest.find_first_not_of(" \t");
+  if (b == std::string_view::npos) {
+    rest = {};
+    return {};
+  }
+  rest.remove_prefix(b);
+  const size_t e = std::min(rest.find_first_of(" \t"), rest.size());
+  const std::string_view field = rest.substr(0, e);
+  rest.remove_prefix(e);
+  return field;
+}
+
+template <typename T>
+bool parse_whole(std::string_view s, T& value) {
+  if (s.empty()) return false;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), value);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+}  // namespace
+
+std::vector<std::pair<long, int>> parse_calculix_dofs(const std::string& text, const std::string& file) {
+  std::vector<std::pair<long, int>> dofs;
+  for_each_line(text, [&](std::string_view line, long number) {
+    std::string_view rest = line;
+    const std::string_view field = next_field(rest);
+    const size_t dot = field.find('.');
+    long node = 0;
+    int direction = -1;
+    if (!next_field(rest).empty() || dot == std::string_view::npos || !parse_whole(field.substr(0, dot), node) ||
+        !parse_whole(field.substr(dot + 1), direction) || node < 1 || direction < 0)
+      bad_line(file, number, "expected node.direction", line);
+    dofs.emplace_back(node, direction);
+  });
+  if (dofs.empty()) throw std::runtime_error(file + ": no degrees of freedom");
+  return dofs;
+}
+
+CalculixSparse parse_calculix_matrix(const std::string& text, Eigen::Index size, const std::string& file) {
+  if (size < 1) throw std::invalid_argument("parse_calculix_matrix: size must be positive");
+  struct Entry {
+    long column, row, line;
+  };
+  std::vector<Entry> entries;
+  std::vector<Eigen::Triplet<double>> triplets;
+  entries.reserve(text.size() / 40);
+  triplets.reserve(text.size() / 20);
+  bool ordered = true;  // ccx sorts by column, then row: then repeats show as a non-increasing pair
+  for_each_line(text, [&](std::string_view line, long number) {
+    std::string_view rest = line;
+    long i = 0, j = 0;
+    double v = 0;
+    if (!parse_whole(next_field(rest), i) || !parse_whole(next_field(rest), j) ||
+        !parse_whole(next_field(rest), v) || !next_field(rest).empty())
+      bad_line(file, number, "expected 'row column value'", line);
+    if (i < 1 || j < 1 || i > size || j > size)
+      bad_line(file, number, "index outside 1.." + std::to_string(size) + " (the size of the .dof file)", line);
+    if (i > j) bad_line(file, number, "entry below the diagonal (ccx stores the upper triangle)", line);
+    if (!std::isfinite(v)) bad_line(file, number, "value is not finite", line);
+    if (!entries.empty()) {
+      const Entry& p = entries.back();
+      ordered = ordered && (j > p.column || (j == p.column && i > p.row));
+    }
+    entries.push_back({j, i, number});
+    triplets.emplace_back(i - 1, j - 1, v);
+    if (i != j) triplets.emplace_back(j - 1, i - 1, v);
+  });
+  if (entries.empty()) throw std::runtime_error(file + ": no matrix entries");
+  if (!ordered) {
+    std::vector<Entry> sorted = entries;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
+      return a.column != b.column ? a.column < b.column : a.row < b.row;
+    });
+    for (size_t k = 1; k < sorted.size(); ++k)
+      if (sorted[k].column == sorted[k - 1].column && sorted[k].row == sorted[k - 1].row)
+        throw std::runtime_error(file + ":" + std::to_string(std::max(sorted[k].line, sorted[k - 1].line)) +
+                                 ": entry (" + std::to_string(sorted[k].row) + ", " +
+                                 std::to_string(sorted[k].column) + ") repeated (first on line " +
+                                 std::to_string(std::min(sorted[k].line, sorted[k - 1].line)) + ")");
+  }
+  CalculixSparse a(size, size);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  return a;
+}
+
+std::optional<Eigen::Index> CalculixMatrices::row_of(fe::NodeId node, int direction) const {
+  std::optional<Eigen::Index> found;
+  std::array<int, 4> count{};
+  for (size_t r = 0; r < dofs.size(); ++r) {
+    const CalculixDof& d = dofs[r];
+    if (d.origin != CalculixNodeOrigin::model || d.model_node != node) continue;
+    if (d.direction >= 0 && d.direction < 4) ++count[static_cast<size_t>(d.direction)];
+    if (d.direction == direction) found = static_cast<Eigen::Index>(r);
+  }
+  // A direction labelled twice means expanded nodes (see the header): then
+  // even a direction labelled once may be a DOF of an expanded node.
+  for (int c : count)
+    if (c > 1) return std::nullopt;
+  return found;
+}
+
+CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& work_dir) {
+  return run_calculix_matrices(model, work_dir, CalculixRunOptions{});
+}
+
+CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& work_dir,
+                                       const CalculixRunOptions& run) {
+  check_run_options(run);
+  CalculixOptions opt;
+  opt.modes = 1;
+  opt.heading = "rigflex matrix export";
+  opt.matrix_storage = true;
+  InputWriter writer(model, opt);
+  const std::string deck = writer.write();
+
+  CalculixMatrices r;
+  fs::create_directories(work_dir);
+  r.input = work_dir / (run.job + ".inp");
+  r.stiffness = work_dir / (run.job + ".sti");
+  r.mass = work_dir / (run.job + ".mas");
+  r.dof_file = work_dir / (run.job + ".dof");
+  r.log = work_dir / (run.job + ".log");
+  write_text_atomically(r.input, deck);
+  for (const fs::path& p : {r.stiffness, r.mass, r.dof_file}) {
+    std::error_code ec;
+    fs::remove(p, ec);  // never read stale matrices
+  }
+
+  struct rusage usage {};
+  const auto t0 = std::chrono::steady_clock::now();
+  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, child_environment(run), usage);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto failed = [&](const std::string& why) {
+    return std::runtime_error("CalculiX run in " + work_dir.string() + " failed (" + why + "); see " +
+                              r.log.string() + ":\n" + tail_of(r.log, 1500));
+  };
+  if (status != 0) throw failed("exit status " + std::to_string(status));
+  for (const fs::path& p : {r.stiffness, r.mass, r.dof_file})
+    if (!fs::exists(p)) throw failed("no " + p.filename().string() + " written");
+
+  std::unordered_map<long, fe::NodeId> model_node;
+  for (const auto& [id, ccx] : writer.ccx_ids()) model_node.emplace(ccx, id);
+  const long first_generated = writer.first_free_node();
+  for (const auto& [node, direction] : parse_calculix_dofs(read_text(r.dof_file), r.dof_file.string())) {
+    CalculixDof d;
+    d.ccx_node = node;
+    d.direction = direction;
+    if (const auto it = model_node.find(node); it != model_node.end()) {
+      d.origin = CalculixNodeOrigin::model;
+      d.model_node = it->second;
+    } else {
+      d.origin = node < first_generated ? CalculixNodeOrigin::writer : CalculixNodeOrigin::ccx;
+    }
+    r.dofs.push_back(d);
+  }
+  const auto n = static_cast<Eigen::Index>(r.dofs.size());
+  r.K = parse_calculix_matrix(read_text(r.stiffness), n, r.stiffness.string());
+  r.M = parse_calculix_matrix(read_text(r.mass), n, r.mass.string());
   return r;
 }
 

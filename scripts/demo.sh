@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the main job on the bundled
-# example: the modes of the rig's fixed frame, written for ParaView.
+# examples: the modes of the rig's fixed frame, written for ParaView, and
+# the fixed and carrying frames reduced onto their joints.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 bash scripts/build.sh
 ./build/rigflex mass examples/beam-frame/model.yaml
 ./build/rigflex modes examples/beam-frame/model.yaml --count 8 --out out/beam-frame
+./build/rigflex reduce examples/beam-frame/model.yaml --interface upper_joints --out out/fixed-frame-reduced
+./build/rigflex reduce examples/carrying-frame/model.yaml --interface lower_joints \
+  --method craig-bampton --modes 12 --out out/carrying-frame-reduced

@@ -8,39 +8,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-namespace fs = std::filesystem;
+#include "apps/cli_support.hpp"
 
 namespace {
 
-struct CliRun {
-  int code = 0;
-  std::string out;
-};
-
-CliRun run(const std::string& args) {
-  const std::string cmd = std::string(RIGFLEX_CLI) + " " + args + " 2>&1";
-  CliRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rigflex_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  return d;
-}
-
-std::string example(const std::string& name) { return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml"; }
-
-fs::path write_model(const std::string& name, const std::string& text) {
-  const fs::path p = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + ".yaml");
-  std::ofstream(p) << text;
-  return p;
-}
+using namespace rigflex::test;
 
 TEST(Cli, ModesOfTheBeamFrameExampleWritesJsonAndParaViewFiles) {
   const fs::path out = fresh_dir("beam");

@@ -8,6 +8,7 @@
 
 #include "fe/meshers.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "support/frame_models.hpp"
 #include "support/test_support.hpp"
 
 namespace rigflex {
@@ -47,14 +48,8 @@ fe::BeamSection rectangle(double width_y, double height_z) {
   return s;
 }
 
-void fix(fe::Model& m, fe::NodeId node, std::initializer_list<int> dofs) {
-  fe::DofMask mask{};
-  for (int d : dofs) mask[static_cast<size_t>(d)] = true;
-  m.supports.push_back({"s" + std::to_string(m.supports.size()), node, mask});
-}
-void fix_all_nodes(fe::Model& m, std::initializer_list<int> dofs) {
-  for (const auto& n : m.nodes) fix(m, n.id, dofs);
-}
+using test::fix;
+using test::fix_all_nodes;
 fe::NodeId node_at_x(const fe::Model& m, double x) {
   for (const auto& n : m.nodes)
     if (std::abs(n.x.x() - x) < 1e-9 && n.x.tail<2>().norm() < 1e-9) return n.id;
@@ -233,42 +228,7 @@ TEST(BeamVerification, NafemsFv2DoubleCrossAsSpecified) {
                0, 1e-2, "FV2");
 }
 
-fe::Model portal(double beam_I) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  fe::BeamSection col;
-  col.name = "col";
-  col.material = "steel";
-  col.A = 1e3;  // axially rigid, as the closed form assumes
-  col.Iy = col.Iz = 1e-4;
-  col.J = 1e-4;
-  fe::BeamSection beam = col;
-  beam.name = "beam";
-  beam.Iy = beam.Iz = beam_I;
-  m.beam_sections["col"] = col;
-  m.beam_sections["beam"] = beam;
-  fe::NodeMerger merger(m);
-  auto member = [&](Vec3 a, Vec3 b, const std::string& sec) {
-    fe::MemberSpec s;
-    s.id = sec + std::to_string(m.beams.size());
-    s.from = a;
-    s.to = b;
-    s.elements = 4;
-    s.section = sec;
-    s.theory = fe::BeamTheory::EulerBernoulli;
-    s.mass = fe::MassKind::None;
-    return fe::mesh_member(m, merger, s);
-  };
-  const auto c1 = member({0, 0, 0}, {0, 4, 0}, "col");
-  const auto c2 = member({6, 0, 0}, {6, 4, 0}, "col");
-  member({0, 4, 0}, {6, 4, 0}, "beam");
-  fix(m, c1.front(), {UX, UY, RZ});
-  fix(m, c2.front(), {UX, UY, RZ});
-  fix_all_nodes(m, {UZ, RX, RY});
-  m.point_masses.push_back({"m1", c1.back(), 5000.0, {}});
-  m.point_masses.push_back({"m2", c2.back(), 5000.0, {}});
-  return m;
-}
+fe::Model portal(double beam_I) { return test::portal_frame(beam_I); }
 
 TEST(BeamVerification, PortalFrameSwayIsExact) {
   // Massless Hermite members with masses at the joints: exact to round-off

@@ -1,0 +1,53 @@
+#pragma once
+// Reduction of a frame model onto the DOFs of a named node set of joint
+// centres, with Rayleigh damping, state-space form and the checks that ship
+// with every reduction (reduced_model.hpp).
+#include <array>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fe/model.hpp"
+#include "reduction/component_modes.hpp"
+#include "reduction/reduced_model.hpp"
+
+namespace rigflex::reduction {
+
+struct FrameReductionOptions {
+  std::string interface_set;  // node set naming the joint centres (required)
+  InterfaceDofs retained = InterfaceDofs::translations;
+  ReductionMethod method = ReductionMethod::guyan;
+  int modes = 0;                    // Craig-Bampton mode count ...
+  std::optional<double> cutoff_hz;  // ... or cutoff
+  // nullopt: grounded when the model has supports, free-free otherwise.
+  std::optional<FrameSupport> support;
+  std::optional<fe::NodeId> reference_node;  // FrameSupport::reference_node
+  double zeta = 0.02;
+  std::array<int, 2> zeta_modes{1, 3};  // 1-based elastic modes of the full model
+  int check_modes = 10;                 // elastic modes of the full model compared
+  std::function<void(const std::string&)> progress;  // optional stage messages
+
+  // Throws std::invalid_argument naming the option: zeta outside (0, 1), mode
+  // indices < 1 or equal, check_modes < 1, reference_node without that
+  // support, and the ComponentModeOptions rules.
+  void validate() const;
+};
+
+// Throws fe::ModelError for an invalid model or an interface set that is
+// missing, empty, or names a node that is not in the model or whose DOF is
+// held or dependent; std::invalid_argument for invalid options, for a
+// grounded reduction of a model without supports (or a free one with
+// supports) and for mode indices beyond what the model has. Numerical
+// failures (a mechanism, no convergence) throw ReductionError with the free
+// DOFs named.
+ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& options);
+
+struct ReductionError : std::runtime_error {
+  std::vector<std::string> free_dofs;  // "node 12 RZ", for a mechanism
+  ReductionError(const std::string& what, std::vector<std::string> dofs = {})
+      : std::runtime_error(what), free_dofs(std::move(dofs)) {}
+};
+
+}  // namespace rigflex::reduction

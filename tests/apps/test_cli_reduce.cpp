@@ -1,0 +1,113 @@
+// `rigflex reduce` end to end on the bundled fixed and carrying frames: the
+// checks it prints, the files it writes (read back), and bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "apps/cli_support.hpp"
+#include "io/reduced_export.hpp"
+#include "io/reduced_mat.hpp"
+
+namespace {
+
+using namespace rigflex::test;
+namespace reduction = rigflex::reduction;
+
+void expect_no_temporaries(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos);
+}
+
+TEST(CliReduce, FixedFrameExampleGuyanGrounded) {
+  const fs::path out = fresh_dir("reduce_fixed");
+  const CliRun r = run("reduce " + example("beam-frame") + " --interface upper_joints --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("guyan, grounded"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("static interface flexibility"), std::string::npos);
+  for (const char* f : {"reduced.json", "reduced.mat", "K.mtx", "M.mtx", "C.mtx", "ss_A.mtx", "ss_B.mtx", "ss_C.mtx",
+                        "ss_D.mtx"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  expect_no_temporaries(out);
+  const reduction::ReducedFrame f = rigflex::io::read_reduced_frame(out);
+  EXPECT_EQ(f.method, reduction::ReductionMethod::guyan);
+  EXPECT_EQ(f.support, reduction::FrameSupport::grounded);
+  ASSERT_EQ(f.K.rows(), 9);  // three joints, three translations each
+  EXPECT_LE(f.checks.static_flexibility_error, 1e-10);
+  EXPECT_EQ(f.checks.rigid_body_modes_reduced, 0);
+  // Rayleigh: 2 % at elastic modes 1 and 3 of the full model by default.
+  EXPECT_EQ(f.damping.modes[0], 1);
+  EXPECT_EQ(f.damping.modes[1], 3);
+  const double w1 = f.damping.omega[0], w3 = f.damping.omega[1];
+  EXPECT_NEAR(f.damping.alpha / (2 * w1) + f.damping.beta * w1 / 2, 0.02, 1e-15);
+  EXPECT_NEAR(f.damping.alpha / (2 * w3) + f.damping.beta * w3 / 2, 0.02, 1e-15);
+  // The .mat file holds the same matrices, bit for bit.
+  const auto mat = rigflex::io::read_reduced_mat(out / "reduced.mat");
+  EXPECT_EQ(mat.K, f.K);
+  EXPECT_EQ(mat.M, f.M);
+  EXPECT_EQ(mat.C, f.C);
+  fs::remove_all(out);
+}
+
+TEST(CliReduce, CarryingFrameExampleCraigBamptonFreeFree) {
+  const fs::path out = fresh_dir("reduce_carrying");
+  const CliRun r = run("reduce " + example("carrying-frame") +
+                       " --interface lower_joints --method craig-bampton --modes 12 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("craig-bampton, free"), std::string::npos) << r.out;
+  const reduction::ReducedFrame f = rigflex::io::read_reduced_frame(out);
+  ASSERT_EQ(f.K.rows(), 9 + 12);
+  EXPECT_EQ(f.mode_count, 12);
+  EXPECT_EQ(f.checks.rigid_body_modes_full, 6);
+  EXPECT_EQ(f.checks.rigid_body_modes_reduced, 6);
+  EXPECT_TRUE(f.checks.mass_comparable);
+  EXPECT_NEAR(f.checks.mass_reduced.mass / f.checks.mass_full.mass, 1.0, 1e-12);
+  EXPECT_LE(f.checks.static_flexibility_error, 1e-10);
+  // The state-space matrices have the documented sizes: x = [z; z'], u at the interface.
+  EXPECT_EQ(f.state_space.A.rows(), 42);
+  EXPECT_EQ(f.state_space.B.cols(), 9);
+  EXPECT_EQ(f.state_space.C.rows(), 18);
+  fs::remove_all(out);
+}
+
+TEST(CliReduce, BadOptionsAreNamedAndWriteNothing) {
+  const fs::path out = fresh_dir("reduce_bad");
+  const std::string fixed = example("beam-frame");
+  struct Case {
+    std::string args, fragment;
+  };
+  const std::vector<Case> cases{
+      {fixed + " --interface nope", "'nope' does not exist"},
+      {fixed + " --interface upper_joints --zeta 1.5", "zeta"},
+      {fixed + " --interface upper_joints --zeta-modes 2,2", "zeta modes"},
+      {fixed + " --interface upper_joints --zeta-modes 1,100000", "does not exist"},
+      {fixed + " --interface upper_joints --modes 3", "Guyan"},
+      {fixed + " --interface upper_joints --method craig-bampton --modes 100000", "interior has only"},
+      {fixed + " --interface upper_joints --support free", "floating"},
+      {example("carrying-frame") + " --interface lower_joints --support grounded", "needs supports"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = run("reduce " + c.args + " --quiet --out " + out.string());
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.out;
+    EXPECT_NE(r.out.find(c.fragment), std::string::npos) << c.args << "\n" << r.out;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+TEST(CliReduce, InterfaceThatCannotHoldAFloatingFrameNamesTheFreeDofs) {
+  // Two joints only: the frame can turn about the line through them.
+  std::ifstream in(example("carrying-frame"));
+  std::stringstream text;
+  text << in.rdbuf() << "node_sets:\n  two: {box: [[-2.0, -1.2, 0.11], [2.0, -1.0, 0.13]]}\n";
+  const fs::path model = write_model("two_joints", text.str());
+  const fs::path out = fresh_dir("reduce_mech");
+  const CliRun r = run("reduce " + model.string() + " --interface two --quiet --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("free DOFs"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("node "), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove(model);
+}
+
+}  // namespace
