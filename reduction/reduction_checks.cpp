@@ -17,6 +17,22 @@ std::vector<Eigen::Index> remaining_index(Eigen::Index n, const std::vector<Eige
   return map;
 }
 
+// Unit loads at the remaining boundary DOFs, solved by `solve`; the
+// displacements there form the (symmetrized) flexibility matrix.
+template <class Solve>
+Eigen::MatrixXd unit_load_flexibility(Eigen::Index m, const std::vector<Eigen::Index>& map,
+                                      const std::vector<Eigen::Index>& boundary, Solve solve) {
+  std::vector<Eigen::Index> loaded;
+  for (Eigen::Index b : boundary)
+    if (map[static_cast<size_t>(b)] >= 0) loaded.push_back(map[static_cast<size_t>(b)]);
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(loaded.size()));
+  for (size_t k = 0; k < loaded.size(); ++k) E(loaded[k], static_cast<Eigen::Index>(k)) = 1.0;
+  const Eigen::MatrixXd X = solve(E);
+  Eigen::MatrixXd G(E.cols(), E.cols());
+  for (size_t k = 0; k < loaded.size(); ++k) G.row(static_cast<Eigen::Index>(k)) = X.row(loaded[k]);
+  return 0.5 * (G + G.transpose());
+}
+
 }  // namespace
 
 Eigen::MatrixXd interface_rigid_motions(const std::vector<InterfaceNode>& nodes,
@@ -95,18 +111,10 @@ Eigen::MatrixXd full_interface_flexibility(const SpMat& K, const std::vector<Eig
   Ks.setFromTriplets(t.begin(), t.end());
   t.clear();
   t.shrink_to_fit();
-  std::vector<Eigen::Index> loaded;
-  for (Eigen::Index b : boundary)
-    if (map[static_cast<size_t>(b)] >= 0) loaded.push_back(map[static_cast<size_t>(b)]);
   SparseCholesky factor;
   const FactorStatus status = factor.factorize(Ks);
   if (!status.ok) throw std::runtime_error("static check: the held full stiffness is not positive definite");
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(loaded.size()));
-  for (size_t k = 0; k < loaded.size(); ++k) E(loaded[k], static_cast<Eigen::Index>(k)) = 1.0;
-  const Eigen::MatrixXd X = factor.solve(E);
-  Eigen::MatrixXd G(E.cols(), E.cols());
-  for (size_t k = 0; k < loaded.size(); ++k) G.row(static_cast<Eigen::Index>(k)) = X.row(loaded[k]);
-  return 0.5 * (G + G.transpose());
+  return unit_load_flexibility(m, map, boundary, [&](const Eigen::MatrixXd& E) { return factor.solve(E); });
 }
 
 Eigen::MatrixXd reduced_interface_flexibility(const Eigen::MatrixXd& K, const std::vector<Eigen::Index>& boundary,
@@ -117,19 +125,11 @@ Eigen::MatrixXd reduced_interface_flexibility(const Eigen::MatrixXd& K, const st
   for (Eigen::Index j = 0; j < K.cols(); ++j)
     for (Eigen::Index i = 0; i < K.rows(); ++i)
       if (map[size_t(i)] >= 0 && map[size_t(j)] >= 0) Ks(map[size_t(i)], map[size_t(j)]) = K(i, j);
-  std::vector<Eigen::Index> loaded;
-  for (Eigen::Index b : boundary)
-    if (map[static_cast<size_t>(b)] >= 0) loaded.push_back(map[static_cast<size_t>(b)]);
   const Eigen::LLT<Eigen::MatrixXd> llt(Ks);
   if (llt.info() != Eigen::Success) {
     throw std::runtime_error("static check: the held reduced stiffness is not positive definite");
   }
-  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(m, static_cast<Eigen::Index>(loaded.size()));
-  for (size_t k = 0; k < loaded.size(); ++k) E(loaded[k], static_cast<Eigen::Index>(k)) = 1.0;
-  const Eigen::MatrixXd X = llt.solve(E);
-  Eigen::MatrixXd G(E.cols(), E.cols());
-  for (size_t k = 0; k < loaded.size(); ++k) G.row(static_cast<Eigen::Index>(k)) = X.row(loaded[k]);
-  return 0.5 * (G + G.transpose());
+  return unit_load_flexibility(m, map, boundary, [&](const Eigen::MatrixXd& E) -> Eigen::MatrixXd { return llt.solve(E); });
 }
 
 }  // namespace rigflex::reduction

@@ -38,15 +38,7 @@ fe::Model bar_model(double length, int elements, const fe::BeamSection& section,
 
 fe::Material steel(double E = 200e9, double nu = 0.3, double rho = 8000.0) { return {"steel", E, nu, rho}; }
 
-fe::BeamSection rectangle(double width_y, double height_z) {
-  fe::BeamSection s;
-  s.name = "rect";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Rectangle;
-  s.width = width_y;
-  s.height = height_z;
-  return s;
-}
+fe::BeamSection rectangle(double width_y, double height_z) { return test::rect_section("rect", width_y, height_z); }
 
 using test::fix;
 using test::fix_all_nodes;
@@ -59,18 +51,7 @@ fe::NodeId node_at_x(const fe::Model& m, double x) {
 enum : int { UX, UY, UZ, RX, RY, RZ };
 
 Eigen::VectorXd modes_hz(const fe::Model& m, int count) {
-  reduction::EigenOptions opt;
-  opt.count = count;
-  const auto a = reduction::run_modal_analysis(m, opt);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  // Backward error: the pair is exact for K, M perturbed by this much
-  // (relative). The Lanczos accepts a Ritz pair at the default tolerance
-  // 1e-10 on the transformed problem, which bounds it at that level. The
-  // plain ratio ||Kx - lMx|| / ||Kx|| is not usable here: K x of a rigid-body
-  // mode is rounding noise, and the portal frame's K has a condition ~1e8.
-  EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);
-  EXPECT_LT(a.result.orthogonality_error, 1e-10);
-  return a.summary.frequencies_hz;
+  return test::checked_modal_analysis(m, count).summary.frequencies_hz;
 }
 
 void expect_modes(const Eigen::VectorXd& f, const std::vector<test::Target>& targets, int first_mode_offset,

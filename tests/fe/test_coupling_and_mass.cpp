@@ -6,21 +6,12 @@
 #include "fe/assembly.hpp"
 #include "fe/mass_properties.hpp"
 #include "fe/meshers.hpp"
+#include "support/frame_models.hpp"
 
 namespace rigflex {
 namespace {
 
 using fe::Vec3;
-
-fe::BeamSection tube() {
-  fe::BeamSection s;
-  s.name = "tube";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Tube;
-  s.diameter = 0.1;
-  s.wall = 0.005;
-  return s;
-}
 
 Eigen::Matrix3d skew(const Vec3& r) {
   Eigen::Matrix3d S;
@@ -30,20 +21,14 @@ Eigen::Matrix3d skew(const Vec3& r) {
 
 TEST(RigidCoupling, SpiderMovesRigidlyUnderLoad) {
   // A reference node drives four legs' top nodes; the legs stand on the floor.
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  m.beam_sections["tube"] = tube();
+  fe::Model m = test::steel_model();
+  m.beam_sections["tube"] = test::tube_section("tube", 0.1, 0.005);
   fe::NodeMerger merger(m);
   std::vector<fe::NodeId> tops;
   for (const Vec3& p : {Vec3(1, 0, 0), Vec3(0, 1.5, 0.2), Vec3(-1, 0, 0.1), Vec3(0, -1, -0.1)}) {
-    fe::MemberSpec s;
-    s.id = "leg" + std::to_string(tops.size());
-    s.from = p - Vec3(0, 0, 2);
-    s.to = p;
-    s.elements = 3;
-    s.section = "tube";
-    const auto ids = fe::mesh_member(m, merger, s);
-    m.supports.push_back({"base" + s.id, ids.front(), {true, true, true, true, true, true}});
+    const std::string id = "leg" + std::to_string(tops.size());
+    const auto ids = test::member(m, merger, id, p - Vec3(0, 0, 2), p, 3, "tube");
+    test::clamp(m, "base" + id, ids.front());
     tops.push_back(ids.back());
   }
   const fe::NodeId ref = merger.at(Vec3(0.1, 0.2, 0.5));
@@ -94,18 +79,11 @@ TEST(RigidCoupling, PointMassOnRigidOffsetHasParallelAxisInertia) {
 }
 
 TEST(MassProperties, SlenderBeamMatchesClosedForm) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  fe::BeamSection s = tube();
+  fe::Model m = test::steel_model();
+  const fe::BeamSection s = test::tube_section("tube", 0.1, 0.005);
   m.beam_sections["tube"] = s;
   fe::NodeMerger merger(m);
-  fe::MemberSpec spec;
-  spec.id = "b";
-  spec.from = Vec3(1, 2, 3);
-  spec.to = Vec3(3, 2, 3);
-  spec.elements = 5;
-  spec.section = "tube";
-  fe::mesh_member(m, merger, spec);
+  test::member(m, merger, "b", Vec3(1, 2, 3), Vec3(3, 2, 3), 5, "tube");
   const fe::MassProperties p = fe::mass_properties(m);
   const fe::SectionProperties sp = fe::section_properties(s, 0.3);
   const double L = 2.0, rho = 7850, mass = rho * sp.A * L;

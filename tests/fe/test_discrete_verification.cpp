@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "reduction/modal_analysis.hpp"
+#include "support/frame_models.hpp"
 #include "support/test_support.hpp"
 
 namespace rigflex {
@@ -12,31 +13,7 @@ namespace {
 
 using fe::Vec3;
 
-reduction::ModalAnalysis solve(const fe::Model& m, int count) {
-  reduction::EigenOptions opt;
-  opt.count = count;
-  auto a = reduction::run_modal_analysis(m, opt);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  // Backward error: the pair is exact for K, M perturbed by this much
-  // (relative). The Lanczos accepts a Ritz pair at the default tolerance
-  // 1e-10 on the transformed problem, which bounds it at that level. The
-  // plain ratio ||Kx - lMx|| / ||Kx|| is not usable here: K x of a rigid-body
-  // mode is rounding noise, and the portal frame's K has a condition ~1e8.
-  EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);
-  EXPECT_LT(a.result.orthogonality_error, 1e-10);
-  return a;
-}
-
-fe::Spring axial_spring(const std::string& id, fe::NodeId a, std::optional<fe::NodeId> b, double k,
-                        std::optional<Vec3> dir = std::nullopt) {
-  fe::Spring s;
-  s.id = id;
-  s.node = a;
-  s.other = b;
-  s.axial = k;
-  s.direction = dir;
-  return s;
-}
+using test::axial_spring;
 
 TEST(DiscreteVerification, SpringMassChainSdld02OnAnObliqueAxis) {
   // Eight masses on the axis (3,4,0)/5 with oblique axial springs: the
@@ -54,7 +31,7 @@ TEST(DiscreteVerification, SpringMassChainSdld02OnAnObliqueAxis) {
   for (int i = 1; i < 8; ++i) m.springs.push_back(axial_spring("k" + std::to_string(i), i, i + 1, 1e5));
   m.springs.push_back(axial_spring("g1", 1, std::nullopt, 1e5, axis));
   m.springs.push_back(axial_spring("g8", 8, std::nullopt, 1e5, axis));
-  const auto a = solve(m, 16);
+  const auto a = test::checked_modal_analysis(m, 16);
   const auto targets = test::verification_targets("discrete_spring_mass_chain_sdld02.yaml");
   for (int k = 0; k < 8; ++k) EXPECT_LT(a.summary.frequencies_hz(k), 1e-4) << "zero mode " << k;
   for (const auto& t : targets) {
@@ -73,15 +50,15 @@ TEST(DiscreteVerification, TwoMassThreeSpringVm89) {
   m.add_node(2, {1, 0, 0});
   m.add_node(3, {2, 0, 0});
   m.add_node(4, {3, 0, 0});
-  m.supports.push_back({"g1", 1, {true, true, true, true, true, true}});
-  m.supports.push_back({"g4", 4, {true, true, true, true, true, true}});
+  test::clamp(m, "g1", 1);
+  test::clamp(m, "g4", 4);
   for (int n : {2, 3}) m.supports.push_back({"yz" + std::to_string(n), n, {false, true, true, false, false, false}});
   m.springs.push_back(axial_spring("k1", 1, 2, 200.0));
   m.springs.push_back(axial_spring("k2", 2, 3, 800.0));
   m.springs.push_back(axial_spring("k3", 3, 4, 200.0));
   m.point_masses.push_back({"m1", 2, 0.5, {}});
   m.point_masses.push_back({"m2", 3, 1.0, {}});
-  const auto a = solve(m, 2);
+  const auto a = test::checked_modal_analysis(m, 2);
   for (const auto& t : test::verification_targets("discrete_two_mass_spring_vm89.yaml"))
     EXPECT_NEAR(a.summary.frequencies_hz(t.mode - 1) / t.freq_hz, 1.0, 1e-4) << "mode " << t.mode;
   // Amplitude ratio of mode 1 (ANSYS target 0.92116, 5 digits).
@@ -93,12 +70,8 @@ TEST(DiscreteVerification, SixDofPointMassSdld400) {
   fe::Model m;
   m.add_node(1, {0, 0, 0});
   m.point_masses.push_back({"mass", 1, 10.0, {10.0, 10.0, 10.0, 0.0, 0.0, 0.0}});
-  fe::Spring s;
-  s.id = "springs";
-  s.node = 1;
-  s.stiffness = {160, 180, 1280, 180, 1280, 1960};
-  m.springs.push_back(s);
-  const auto a = solve(m, 6);
+  m.springs.push_back(test::grounded_spring("springs", 1, {160, 180, 1280, 180, 1280, 1960}));
+  const auto a = test::checked_modal_analysis(m, 6);
   // Printed to 6 digits; repeated pairs must both be found.
   for (const auto& t : test::verification_targets("discrete_single_node_6dof_mass_sdld400.yaml"))
     EXPECT_NEAR(a.summary.frequencies_hz(t.mode - 1) / t.freq_hz, 1.0, 2e-6) << "mode " << t.mode;

@@ -3,6 +3,8 @@
 
 #include "fe/meshers.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "support/frame_models.hpp"
+#include "support/test_support.hpp"
 
 namespace rigflex {
 namespace {
@@ -10,18 +12,11 @@ namespace {
 using fe::Vec3;
 
 Eigen::VectorXd lowest_hz(const fe::Model& m, int count) {
-  reduction::EigenOptions opt;
-  opt.count = count;
-  const auto a = reduction::run_modal_analysis(m, opt);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);  // see test_beam_verification.cpp
-  EXPECT_LT(a.result.orthogonality_error, 1e-10);
-  return a.summary.frequencies_hz;
+  return test::checked_modal_analysis(m, count).summary.frequencies_hz;
 }
 
 fe::Model box_girder_cantilever(bool quadratic, int along, int across) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
+  fe::Model m = test::steel_model();
   fe::NodeMerger merger(m);
   fe::BoxGirderSpec g;
   g.id = "g";
@@ -37,31 +32,16 @@ fe::Model box_girder_cantilever(bool quadratic, int along, int across) {
   g.quadratic = quadratic;
   g.end_plates = false;
   const fe::BoxGirderNodes ends = fe::mesh_box_girder(m, merger, g);
-  m.supports.push_back({"root", *ends.start_reference, {true, true, true, true, true, true}});
+  test::clamp(m, "root", *ends.start_reference);
   return m;
 }
 
 fe::Model box_beam_cantilever() {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  fe::BeamSection s;
-  s.name = "box";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Box;
-  s.width = 0.3;
-  s.height = 0.4;
-  s.web_thickness = 0.010;
-  s.flange_thickness = 0.015;
-  m.beam_sections["box"] = s;
+  fe::Model m = test::steel_model();
+  m.beam_sections["box"] = test::box_section("box", 0.3, 0.4, 0.010, 0.015);
   fe::NodeMerger merger(m);
-  fe::MemberSpec b;
-  b.id = "b";
-  b.from = Vec3::Zero();
-  b.to = Vec3(4, 0, 0);
-  b.elements = 40;
-  b.section = "box";
-  const auto ids = fe::mesh_member(m, merger, b);
-  m.supports.push_back({"root", ids.front(), {true, true, true, true, true, true}});
+  const auto ids = test::member(m, merger, "b", Vec3::Zero(), Vec3(4, 0, 0), 40, "box");
+  test::clamp(m, "root", ids.front());
   return m;
 }
 
@@ -95,15 +75,8 @@ TEST(Meshers, MemberStationsBecomeNodes) {
 }
 
 TEST(Meshers, FixedFrameHangsEachJointFromTheNearestBeam) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  fe::BeamSection s;
-  s.name = "col";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Box;
-  s.width = s.height = 0.2;
-  s.wall = 0.01;
-  m.beam_sections["col"] = s;
+  fe::Model m = test::steel_model();
+  m.beam_sections["col"] = test::box_section("col", 0.2, 0.2, 0.01);
   fe::FixedFrameSpec f;
   f.column_bases = {Vec3(-1.5, -1, 0), Vec3(1.5, -1, 0), Vec3(1.5, 1, 0), Vec3(-1.5, 1, 0)};
   f.height = 3;
@@ -123,15 +96,8 @@ TEST(Meshers, FixedFrameHangsEachJointFromTheNearestBeam) {
 }
 
 TEST(Meshers, CarryingFrameFloatsWithSixRigidBodyModes) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  fe::BeamSection s;
-  s.name = "tube";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Tube;
-  s.diameter = 0.1;
-  s.wall = 0.005;
-  m.beam_sections["tube"] = s;
+  fe::Model m = test::steel_model();
+  m.beam_sections["tube"] = test::tube_section("tube", 0.1, 0.005);
   fe::CarryingFrameSpec c;
   c.corner_min = Vec3(-1, -0.8, 0);
   c.corner_max = Vec3(1, 0.8, 0);

@@ -44,6 +44,7 @@
 #include "io/calculix_writer.hpp"
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "support/frame_models.hpp"
 
 namespace rigflex {
 namespace {
@@ -52,19 +53,7 @@ namespace fs = std::filesystem;
 #define REQUIRE_CCX() \
   if (!io::calculix_available("ccx")) GTEST_SKIP() << "CalculiX (ccx) is not on PATH; cross-check skipped"
 
-fe::Model steel_model() {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
-  return m;
-}
-
-fe::BeamSection section(const std::string& name, fe::SectionShape shape) {
-  fe::BeamSection s;
-  s.name = name;
-  s.material = "steel";
-  s.shape = shape;
-  return s;
-}
+using test::steel_model;
 
 struct Comparison {
   std::vector<double> rigflex, ccx;
@@ -125,32 +114,20 @@ std::vector<int> first_modes(int n) {
 
 fe::Model small_mixed_model() {
   fe::Model m = steel_model();
-  auto s = section("bar", fe::SectionShape::Rectangle);
-  s.width = 0.02;
-  s.height = 0.05;
-  m.beam_sections["bar"] = s;
+  m.beam_sections["bar"] = test::rect_section("bar", 0.02, 0.05);
   m.shell_sections["plate"] = {"plate", "steel", 0.01};
   fe::NodeMerger merger(m);
-  fe::MemberSpec member;
-  member.id = "bar";
-  member.to = fe::Vec3(1, 0, 0);
-  member.elements = 2;
-  member.section = "bar";
-  const auto ids = fe::mesh_member(m, merger, member);
+  const auto ids = test::member(m, merger, "bar", fe::Vec3::Zero(), fe::Vec3(1, 0, 0), 2, "bar");
   fe::PatchSpec patch;
   patch.id = "plate";
   patch.corners = {fe::Vec3(1, 0, 0), fe::Vec3(1.5, 0, 0), fe::Vec3(1.5, 0.5, 0), fe::Vec3(1, 0.5, 0)};
   patch.section = "plate";
   fe::mesh_shell_patch(m, merger, patch);
-  m.supports.push_back({"root", ids.front(), {true, true, true, true, true, true}});
+  test::clamp(m, "root", ids.front());
   const fe::NodeId ref = m.add_node(m.next_node_id(), fe::Vec3(0.5, 0, -0.2));
   m.couplings.push_back({"hanger", ref, {ids[1]}, {true, true, true, true, true, true}});
   m.point_masses.push_back({"block", ref, 10.0, {}});
-  fe::Spring spring;
-  spring.id = "tip";
-  spring.node = ids.back();
-  spring.stiffness = {0, 0, 1e5, 0, 0, 0};
-  m.springs.push_back(spring);
+  m.springs.push_back(test::grounded_spring("tip", ids.back(), {0, 0, 1e5, 0, 0, 0}));
   return m;
 }
 
@@ -174,23 +151,23 @@ TEST(CalculixInput, WritesACompleteFrequencyDeck) {
   }
 }
 
+// The refusal must name the offending item, so that a user can find it.
+void expect_refused(const fe::Model& m, const std::string& item, const std::string& what) {
+  try {
+    io::calculix_input(m, {});
+    ADD_FAILURE() << what << " accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(item), std::string::npos) << e.what();
+  }
+}
+
 TEST(CalculixInput, RefusesWhatCcxCannotExpress) {
   // The I-section cross beams of the beam-frame example.
   const io::ModelFile frame = io::read_model(fs::path(RIGFLEX_SOURCE_DIR) / "examples/beam-frame/model.yaml");
-  try {
-    io::calculix_input(frame.model, {});
-    ADD_FAILURE() << "I-section accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("'cross'"), std::string::npos) << e.what();
-  }
+  expect_refused(frame.model, "'cross'", "I-section");
   // The instrument block of the shell-plate example has rotary inertia.
   const io::ModelFile plate = io::read_model(fs::path(RIGFLEX_SOURCE_DIR) / "examples/shell-plate/model.yaml");
-  try {
-    io::calculix_input(plate.model, {});
-    ADD_FAILURE() << "rotary inertia accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("'block'"), std::string::npos) << e.what();
-  }
+  expect_refused(plate.model, "'block'", "rotary inertia");
   fe::Model m = small_mixed_model();
   m.couplings.front().dofs = {true, true, true, false, false, false};
   EXPECT_THROW(io::calculix_input(m, {}), std::invalid_argument);
@@ -235,10 +212,7 @@ TEST(CalculixInput, ParsesTheEigenvalueTable) {
 TEST(CalculixCrossCheck, RectangularCantileverOrientation) {
   REQUIRE_CCX();
   fe::Model m = steel_model();
-  auto s = section("bar", fe::SectionShape::Rectangle);
-  s.width = 0.02;   // local y
-  s.height = 0.05;  // local z
-  m.beam_sections["bar"] = s;
+  m.beam_sections["bar"] = test::rect_section("bar", 0.02, 0.05);  // width along local y, height along local z
   fe::NodeMerger merger(m);
   fe::MemberSpec member;
   member.id = "bar";
@@ -247,14 +221,10 @@ TEST(CalculixCrossCheck, RectangularCantileverOrientation) {
   member.elements = 20;
   member.section = "bar";
   const auto ids = fe::mesh_member(m, merger, member);
-  m.supports.push_back({"root", ids.front(), {true, true, true, true, true, true}});
+  test::clamp(m, "root", ids.front());
   const Eigen::Matrix3d R = fe::beam_local_axes(member.from, member.to, member.orientation);
-  fe::Spring spring;
-  spring.id = "tip";
-  spring.node = ids.back();
-  spring.axial = 2e4;  // to ground, along local y
-  spring.direction = R.row(1).transpose();
-  m.springs.push_back(spring);
+  // To ground, along local y.
+  m.springs.push_back(test::axial_spring("tip", ids.back(), std::nullopt, 2e4, R.row(1).transpose()));
 
   const Comparison c = compare(m, 6, "rect-cantilever");
   expect_modes_within(c, first_modes(6), 0.02);
@@ -271,20 +241,10 @@ TEST(CalculixCrossCheck, RectangularCantileverOrientation) {
 TEST(CalculixCrossCheck, BoxCantileverWalls) {
   REQUIRE_CCX();
   fe::Model m = steel_model();
-  auto s = section("box", fe::SectionShape::Box);
-  s.width = 0.08;
-  s.height = 0.12;
-  s.web_thickness = 0.003;
-  s.flange_thickness = 0.008;
-  m.beam_sections["box"] = s;
+  m.beam_sections["box"] = test::box_section("box", 0.08, 0.12, 0.003, 0.008);
   fe::NodeMerger merger(m);
-  fe::MemberSpec member;
-  member.id = "box";
-  member.to = fe::Vec3(1.5, 0, 0);
-  member.elements = 20;
-  member.section = "box";
-  const auto ids = fe::mesh_member(m, merger, member);
-  m.supports.push_back({"root", ids.front(), {true, true, true, true, true, true}});
+  const auto ids = test::member(m, merger, "box", fe::Vec3::Zero(), fe::Vec3(1.5, 0, 0), 20, "box");
+  test::clamp(m, "root", ids.front());
 
   const Comparison c = compare(m, 3, "box-cantilever");
   expect_modes_within(c, {1, 2, 3}, 0.02);
@@ -306,14 +266,8 @@ TEST(CalculixCrossCheck, BoxCantileverWalls) {
 TEST(CalculixCrossCheck, BeamFrame) {
   REQUIRE_CCX();
   fe::Model m = steel_model();
-  auto col = section("column", fe::SectionShape::Tube);
-  col.diameter = 0.06;
-  col.wall = 0.004;
-  auto beam = section("cross", fe::SectionShape::Rectangle);
-  beam.width = 0.03;
-  beam.height = 0.05;
-  m.beam_sections["column"] = col;
-  m.beam_sections["cross"] = beam;
+  m.beam_sections["column"] = test::tube_section("column", 0.06, 0.004);
+  m.beam_sections["cross"] = test::rect_section("cross", 0.03, 0.05);
   fe::FixedFrameSpec spec;
   spec.column_bases = {{-1.6, -1.4, 0.0}, {1.6, -1.4, 0.0}, {1.6, 1.4, 0.0}, {-1.6, 1.4, 0.0}};
   spec.height = 3.0;

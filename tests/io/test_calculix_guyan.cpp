@@ -30,6 +30,7 @@
 #include "fe/meshers.hpp"
 #include "io/calculix_writer.hpp"
 #include "reduction/frame_reduction.hpp"
+#include "support/frame_models.hpp"
 
 namespace rigflex {
 namespace {
@@ -87,23 +88,11 @@ TEST(CalculixMatrixFiles, ParsesTheUpperTriangle) {
 }
 
 TEST(CalculixMatrixFiles, DeckAsksForMatrixStorage) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
-  fe::BeamSection s;
-  s.name = "rod";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Tube;
-  s.diameter = 0.05;
-  s.wall = 0.004;
-  m.beam_sections["rod"] = s;
+  fe::Model m = test::steel_model();
+  m.beam_sections["rod"] = test::tube_section("rod", 0.05, 0.004);
   fe::NodeMerger merger(m);
-  fe::MemberSpec member;
-  member.id = "rod";
-  member.to = fe::Vec3(1, 0, 0);
-  member.elements = 2;
-  member.section = "rod";
-  const auto ids = fe::mesh_member(m, merger, member);
-  m.supports.push_back({"root", ids.front(), {true, true, true, true, true, true}});
+  const auto ids = test::member(m, merger, "rod", fe::Vec3::Zero(), fe::Vec3(1, 0, 0), 2, "rod");
+  test::clamp(m, "root", ids.front());
   io::CalculixOptions opt;
   opt.matrix_storage = true;
   const std::string inp = io::calculix_input(m, opt);
@@ -159,35 +148,14 @@ Condensed condense(const SpMat& K, const SpMat& M, const std::vector<Eigen::Inde
 // Models.
 
 fe::Model steel() {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
-  fe::BeamSection tube;
-  tube.name = "column";
-  tube.material = "steel";
-  tube.shape = fe::SectionShape::Tube;
-  tube.diameter = 0.06;
-  tube.wall = 0.004;
-  m.beam_sections["column"] = tube;
-  fe::BeamSection rect;
-  rect.name = "beam";
-  rect.material = "steel";
-  rect.shape = fe::SectionShape::Rectangle;
-  rect.width = 0.03;   // local y: horizontal for the ring beams
-  rect.height = 0.05;  // local z: vertical
-  m.beam_sections["beam"] = rect;
+  fe::Model m = test::steel_model();
+  m.beam_sections["column"] = test::tube_section("column", 0.06, 0.004);
+  // Width along local y (horizontal for the ring beams), height along local z (vertical).
+  m.beam_sections["beam"] = test::rect_section("beam", 0.03, 0.05);
   return m;
 }
 
-std::vector<fe::NodeId> member(fe::Model& m, fe::NodeMerger& merger, const std::string& id, const fe::Vec3& from,
-                               const fe::Vec3& to, int elements, const std::string& section) {
-  fe::MemberSpec s;
-  s.id = id;
-  s.from = from;
-  s.to = to;
-  s.elements = elements;
-  s.section = section;
-  return fe::mesh_member(m, merger, s);
-}
+using test::member;
 
 // The frame of the oracle: four tube columns (60 x 4 mm, 2.4 m, clamped at
 // the floor) on an irregular quadrilateral plan (no symmetry, so a swapped
@@ -205,7 +173,7 @@ fe::Model table_frame(int elements_per_member) {
   for (size_t i = 0; i < base.size(); ++i) {
     const auto ids = member(m, merger, "column" + std::to_string(i + 1), base[i], base[i] + fe::Vec3(0, 0, 2.4),
                             elements_per_member, "column");
-    m.supports.push_back({"base" + std::to_string(i + 1), ids.front(), {true, true, true, true, true, true}});
+    test::clamp(m, "base" + std::to_string(i + 1), ids.front());
     tops.push_back(ids.back());
   }
   for (size_t i = 0; i < tops.size(); ++i)
@@ -233,7 +201,7 @@ TEST(CalculixMatrixStorage, ReproducesCcxsOwnEigenvalues) {
   fe::NodeMerger merger(m);
   const auto column = member(m, merger, "column", fe::Vec3(0, 0, 0), fe::Vec3(0, 0, 1.0), 4, "column");
   const auto beam = member(m, merger, "beam", fe::Vec3(0, 0, 1.0), fe::Vec3(0.8, 0, 1.0), 4, "beam");
-  m.supports.push_back({"base", column.front(), {true, true, true, true, true, true}});
+  test::clamp(m, "base", column.front());
   const fe::NodeId ref = m.add_node(m.next_node_id(), fe::Vec3(0.4, 0, 0.9));
   m.couplings.push_back({"hanger", ref, {beam[2]}, {true, true, true, true, true, true}});
   m.point_masses.push_back({"block", ref, 5.0, {}});

@@ -27,6 +27,21 @@ Eigen::Index free_dof(const fe::Model& m, const fe::AssembledSystem& s, fe::Node
   return s.dofs.full_to_free[m.node_index(node) * 6 + static_cast<size_t>(d)];
 }
 
+std::vector<Eigen::Index> joint_translations(const fe::Model& m, const fe::AssembledSystem& sys,
+                                             const std::string& set) {
+  std::vector<Eigen::Index> b;
+  for (fe::NodeId n : m.node_set(set))
+    for (fe::Dof d : {fe::Dof::UX, fe::Dof::UY, fe::Dof::UZ}) b.push_back(free_dof(m, sys, n, d));
+  return b;
+}
+
+ComponentModeOptions craig_bampton(int modes) {
+  ComponentModeOptions o;
+  o.method = ReductionMethod::craig_bampton;
+  o.modes = modes;
+  return o;
+}
+
 // Case B of RED-GUYAN: a 4-DOF axial spring chain condensed onto its ends.
 TEST(Guyan, SpringChainMatchesClosedForm) {
   const YAML::Node c = test::verification_case("reduction_guyan_cantilever_and_spring_chain.yaml");
@@ -65,12 +80,7 @@ Cantilever cantilever(int elements) {
   b.E = c["material"]["E_Pa"].as<double>();
   const double rho = c["material"]["rho_kg_m3"].as<double>();
   b.model.materials["steel"] = {"steel", b.E, c["material"]["nu"].as<double>(), rho};
-  fe::BeamSection s;
-  s.name = "sq";
-  s.material = "steel";
-  s.shape = fe::SectionShape::Rectangle;
-  s.width = s.height = side;
-  b.model.beam_sections["sq"] = s;
+  b.model.beam_sections["sq"] = test::rect_section("sq", side, side);
   b.I = side * side * side * side / 12;
   b.rhoA = rho * side * side;
   fe::NodeMerger merger(b.model);
@@ -148,9 +158,7 @@ TEST(Guyan, PortalWithMasslessMembersIsExact) {
 TEST(Guyan, MatchesDenseSchurComplementAndKeepsStatics) {
   const fe::Model m = test::rig_fixed_frame(2);
   const fe::AssembledSystem sys = fe::assemble(m);
-  std::vector<Eigen::Index> b;
-  for (fe::NodeId n : m.node_set("upper_joints"))
-    for (fe::Dof d : {fe::Dof::UX, fe::Dof::UY, fe::Dof::UZ}) b.push_back(free_dof(m, sys, n, d));
+  const auto b = joint_translations(m, sys, "upper_joints");
   const ReducedMatrices r = reduction::reduce_component(sys.K, sys.M, b, {});
   ASSERT_TRUE(r.ok) << r.message;
 
@@ -181,22 +189,11 @@ TEST(Guyan, MatchesDenseSchurComplementAndKeepsStatics) {
   EXPECT_LE((Gr - Gbb).cwiseAbs().maxCoeff() / Gbb.cwiseAbs().maxCoeff(), 1e-10);
 }
 
-std::vector<Eigen::Index> joint_translations(const fe::Model& m, const fe::AssembledSystem& sys,
-                                             const std::string& set) {
-  std::vector<Eigen::Index> b;
-  for (fe::NodeId n : m.node_set(set))
-    for (fe::Dof d : {fe::Dof::UX, fe::Dof::UY, fe::Dof::UZ}) b.push_back(free_dof(m, sys, n, d));
-  return b;
-}
-
 TEST(CraigBampton, StructureAndFixedInterfaceModes) {
   const fe::Model m = test::rig_fixed_frame(4);
   const fe::AssembledSystem sys = fe::assemble(m);
   const auto b = joint_translations(m, sys, "upper_joints");
-  ComponentModeOptions o;
-  o.method = ReductionMethod::craig_bampton;
-  o.modes = 8;
-  const ReducedMatrices r = reduction::reduce_component(sys.K, sys.M, b, o);
+  const ReducedMatrices r = reduction::reduce_component(sys.K, sys.M, b, craig_bampton(8));
   ASSERT_TRUE(r.ok) << r.message;
   const Eigen::Index nb = 9;
   ASSERT_EQ(r.K.rows(), nb + 8);
@@ -230,11 +227,7 @@ TEST(CraigBampton, ConvergesFromAboveAsModesAreAdded) {
   ASSERT_TRUE(full.converged);
   Eigen::VectorXd previous = Eigen::VectorXd::Constant(6, 1e300);
   for (int modes : {0, 2, 5, 10, 20, 40, 80, 160}) {
-    ComponentModeOptions o;
-    if (modes > 0) {
-      o.method = ReductionMethod::craig_bampton;
-      o.modes = modes;
-    }
+    const ComponentModeOptions o = modes > 0 ? craig_bampton(modes) : ComponentModeOptions{};  // 0: Guyan
     const ReducedMatrices r = reduction::reduce_component(sys.K, sys.M, b, o);
     ASSERT_TRUE(r.ok) << r.message;
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(r.K, r.M);
@@ -258,10 +251,7 @@ TEST(CraigBampton, CutoffKeepsExactlyTheModesBelowIt) {
   const fe::Model m = test::rig_fixed_frame(3);
   const fe::AssembledSystem sys = fe::assemble(m);
   const auto b = joint_translations(m, sys, "upper_joints");
-  ComponentModeOptions by_count;
-  by_count.method = ReductionMethod::craig_bampton;
-  by_count.modes = 30;
-  const ReducedMatrices all = reduction::reduce_component(sys.K, sys.M, b, by_count);
+  const ReducedMatrices all = reduction::reduce_component(sys.K, sys.M, b, craig_bampton(30));
   ASSERT_TRUE(all.ok);
   // A cutoff halfway between modes 17 and 18 (30 modes: the doubling search
   // passes it from a first guess of 12).
@@ -296,9 +286,7 @@ TEST(ComponentModes, RejectsInvalidInput) {
   EXPECT_THROW(reduction::reduce_component(Ks, Ms, {1, 1}, {}), std::invalid_argument);
   EXPECT_THROW(reduction::reduce_component(Ks, sparse(Eigen::MatrixXd::Identity(3, 3)), {0}, {}),
                std::invalid_argument);
-  ComponentModeOptions o;
-  o.method = ReductionMethod::craig_bampton;
-  o.modes = 3;  // only 2 interior DOFs
+  ComponentModeOptions o = craig_bampton(3);  // only 2 interior DOFs
   try {
     reduction::reduce_component(Ks, Ms, {0, 1}, o);
     ADD_FAILURE() << "expected a throw";

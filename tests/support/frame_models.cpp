@@ -11,14 +11,14 @@ namespace {
 
 using fe::Vec3;
 
-fe::BeamSection box(const std::string& name, double width, double height, double wall) {
+fe::BeamSection steel_section(const std::string& name, fe::SectionShape shape, double width = 0.0,
+                              double height = 0.0) {
   fe::BeamSection s;
   s.name = name;
   s.material = "steel";
-  s.shape = fe::SectionShape::Box;
+  s.shape = shape;
   s.width = width;
   s.height = height;
-  s.wall = wall;
   return s;
 }
 
@@ -34,10 +34,68 @@ void fix_all_nodes(fe::Model& m, std::initializer_list<int> dofs) {
   for (const auto& n : m.nodes) fix(m, n.id, dofs);
 }
 
-fe::Model portal_frame(double beam_I, std::array<fe::NodeId, 2>* corners) {
-  using enum fe::Dof;
+void clamp(fe::Model& m, const std::string& id, fe::NodeId node) {
+  m.supports.push_back({id, node, {true, true, true, true, true, true}});
+}
+
+fe::Model steel_model() {
   fe::Model m;
   m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
+  return m;
+}
+
+fe::BeamSection tube_section(const std::string& name, double diameter, double wall) {
+  fe::BeamSection s = steel_section(name, fe::SectionShape::Tube);
+  s.diameter = diameter;
+  s.wall = wall;
+  return s;
+}
+
+fe::BeamSection rect_section(const std::string& name, double width, double height) {
+  return steel_section(name, fe::SectionShape::Rectangle, width, height);
+}
+
+fe::BeamSection box_section(const std::string& name, double width, double height, double wall) {
+  fe::BeamSection s = steel_section(name, fe::SectionShape::Box, width, height);
+  s.wall = wall;
+  return s;
+}
+
+fe::BeamSection box_section(const std::string& name, double width, double height, double web_thickness,
+                            double flange_thickness) {
+  fe::BeamSection s = steel_section(name, fe::SectionShape::Box, width, height);
+  s.web_thickness = web_thickness;
+  s.flange_thickness = flange_thickness;
+  return s;
+}
+
+std::vector<fe::NodeId> member(fe::Model& m, fe::NodeMerger& merger, const std::string& id, const Vec3& from,
+                               const Vec3& to, int elements, const std::string& section) {
+  fe::MemberSpec s;
+  s.id = id;
+  s.from = from;
+  s.to = to;
+  s.elements = elements;
+  s.section = section;
+  return fe::mesh_member(m, merger, s);
+}
+
+fe::Spring axial_spring(const std::string& id, fe::NodeId a, std::optional<fe::NodeId> b, double k,
+                        std::optional<Vec3> direction) {
+  return {.id = id, .node = a, .other = b, .axial = k, .direction = direction};
+}
+
+fe::Spring grounded_spring(const std::string& id, fe::NodeId node, const std::array<double, 6>& stiffness) {
+  fe::Spring s;
+  s.id = id;
+  s.node = node;
+  s.stiffness = stiffness;
+  return s;
+}
+
+fe::Model portal_frame(double beam_I, std::array<fe::NodeId, 2>* corners) {
+  using enum fe::Dof;
+  fe::Model m = steel_model();
   fe::BeamSection col;
   col.name = "col";
   col.material = "steel";
@@ -76,10 +134,9 @@ fe::Model portal_frame(double beam_I, std::array<fe::NodeId, 2>* corners) {
 }
 
 fe::Model rig_fixed_frame(int elements_per_member) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  m.beam_sections["column"] = box("column", 0.2, 0.2, 0.01);
-  m.beam_sections["cross"] = box("cross", 0.16, 0.3, 0.008);
+  fe::Model m = steel_model();
+  m.beam_sections["column"] = box_section("column", 0.2, 0.2, 0.01);
+  m.beam_sections["cross"] = box_section("cross", 0.16, 0.3, 0.008);
   fe::FixedFrameSpec s;
   s.column_bases = {{-1.6, -1.4, 0.0}, {1.6, -1.4, 0.0}, {1.6, 1.4, 0.0}, {-1.6, 1.4, 0.0}};
   s.height = 3.2;
@@ -92,9 +149,8 @@ fe::Model rig_fixed_frame(int elements_per_member) {
 }
 
 fe::Model rig_carrying_frame(int elements_per_member) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850};
-  m.beam_sections["beam"] = box("beam", 0.12, 0.16, 0.006);
+  fe::Model m = steel_model();
+  m.beam_sections["beam"] = box_section("beam", 0.12, 0.16, 0.006);
   fe::CarryingFrameSpec s;
   s.corner_min = {-1.5, -1.0, 0.0};
   s.corner_max = {1.5, 1.0, 0.0};

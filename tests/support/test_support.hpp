@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "fe/model.hpp"
+#include "reduction/modal_analysis.hpp"
+
 namespace rigflex::test {
 
 struct Target {
@@ -20,5 +23,9 @@ YAML::Node verification_case(const std::string& file);
 // `case` equals case_name.
 std::vector<Target> verification_targets(const std::string& file, const std::string& case_name = "");
 std::vector<double> verification_frequencies(const std::string& file, const std::string& case_name = "");
+
+// reduction::run_modal_analysis for the `count` lowest modes, expecting
+// converged, accurate and M-orthogonal eigenpairs.
+reduction::ModalAnalysis checked_modal_analysis(const fe::Model& m, int count);
 
 }  // namespace rigflex::test
