@@ -15,12 +15,17 @@ class RandomBlocks {
   // Entries uniform in [-1, 1).
   Eigen::MatrixXd next(Eigen::Index rows, Eigen::Index cols) {
     Eigen::MatrixXd x(rows, cols);
-    for (Eigen::Index j = 0; j < cols; ++j) {
-      for (Eigen::Index i = 0; i < rows; ++i) {
+    fill(x);
+    return x;
+  }
+
+  // Same numbers as next(x.rows(), x.cols()), written into x.
+  void fill(Eigen::Ref<Eigen::MatrixXd> x) {
+    for (Eigen::Index j = 0; j < x.cols(); ++j) {
+      for (Eigen::Index i = 0; i < x.rows(); ++i) {
         x(i, j) = static_cast<double>(engine_() >> 11) * 0x1.0p-52 - 1.0;
       }
     }
-    return x;
   }
 
  private:

@@ -76,6 +76,11 @@ class SparseCholesky {
   // std::logic_error if there is no successful factorization,
   // std::invalid_argument if B has the wrong number of rows.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B);
+  // Same, overwriting B (a matrix or a block of contiguous columns of one)
+  // with X. With a supernodal factor it needs one column of workspace,
+  // where solve() needs copies of B: the form for large blocks. Solves run
+  // with one OpenBLAS thread (see sparse_cholesky.cpp).
+  void solve_in_place(Eigen::Ref<Eigen::MatrixXd> B);
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
   // Any other dense expression: evaluated, then solved as above.
   template <typename Derived>

@@ -9,12 +9,17 @@
 // the final Ritz vectors are purified, x = Op y / theta (Ericsson &
 // Nour-Omid), which removes any null(M) component (Op kills it).
 //
-// Basis: Q (n x (m + b)) M-orthonormal, MQ = M Q kept alongside so that
-// every M-inner product is a dense product. Relation maintained:
+// Basis: Q (n x (m + b)) M-orthonormal. It is, with the factor, most of the
+// memory the iteration holds: M times the basis is not kept (Q' M w is
+// computed as Q' (M w), a sparse product per Gram-Schmidt pass), only M
+// times the residual block, the next input of the solve. Relation
+// maintained:
 //   Op Q[:, 0:p] = Q[:, 0:p] H[0:p, 0:p] + Q[:, p:p+r] H[p:p+r, 0:p],
 // H symmetric: block tridiagonal after expansions, arrowhead after a thick
 // restart. Every new block is M-orthogonalized against the whole basis by
-// classical Gram-Schmidt twice (DGKS), a third time after heavy cancellation.
+// classical Gram-Schmidt, repeated while a pass cancels more than the DGKS
+// criterion allows (Daniel, Gragg, Kaufman & Stewart 1976; ARPACK's test),
+// at most three passes.
 //
 // Restarts keep the leading Ritz vectors; converged wanted ones are locked
 // (moved to the front, couplings dropped), so that the matrix decomposed at
@@ -32,6 +37,7 @@
 #include <string>
 #include <vector>
 
+#include "reduction/block_kernels.hpp"
 #include "reduction/random_block.hpp"
 
 namespace rigflex::reduction::detail {
@@ -41,9 +47,14 @@ using Eigen::Index;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-// Gram-Schmidt: a third pass when the norm fell below this fraction of the
-// norm before projection (orthogonality after CGS2 degrades like
-// eps * ||w|| / ||w_orth||).
+// Gram-Schmidt against the basis is repeated while a pass leaves less than
+// this fraction of the norm it started from (the DGKS criterion with
+// ARPACK's constant, 1/sqrt(2)): below it, the rounding of the pass may have
+// left components along the basis above eps.
+constexpr double kRepeatPassRatio = 0.717;
+constexpr int kMaxPasses = 3;
+// Within a new block: a pass against the whole basis when the norm fell
+// below this fraction of the norm before projection.
 constexpr double kExtraPassRatio = 1e-3;
 // A new direction whose norm fell below this fraction is linearly dependent
 // (an invariant subspace): the basis continues with a fresh random direction.
@@ -66,6 +77,9 @@ constexpr double kResolvedGapFraction = 0.1;
 // dominated, restarts from a fresh block. The threshold keeps those errors
 // at kRoundingShare of the tolerance.
 constexpr double kRoundingShare = 1e-3;
+// Rows per slice when the basis is rotated in place: the product of a slice
+// with the rotation needs a temporary of this many rows only.
+constexpr Index kRotationRows = 2048;
 
 struct RitzPairs {
   VectorXd theta;             // descending
@@ -73,6 +87,15 @@ struct RitzPairs {
   VectorXd residual;          // ||H[p:p+r, 0:p] s_i||, the residual norm of Op y - theta y
   std::vector<char> locked;   // pair is one of the locked basis vectors
 };
+
+// sqrt(w' M w) per column, from W and M W.
+VectorXd mass_norms(const Eigen::Ref<const MatrixXd>& W, const Eigen::Ref<const MatrixXd>& MW) {
+  VectorXd norms(W.cols());
+  for (Index c = 0; c < W.cols(); ++c) {
+    norms[c] = std::sqrt(std::max(0.0, W.col(c).dot(MW.col(c))));
+  }
+  return norms;
+}
 
 class ThickRestartLanczos {
  public:
@@ -83,8 +106,9 @@ class ThickRestartLanczos {
         random_(settings.seed),
         n_(M.rows()),
         stride_(std::max<Index>(1, settings.basis / (20 * settings.block))),
-        Q_(MatrixXd::Zero(n_, s_.basis + s_.block)),
-        MQ_(MatrixXd::Zero(n_, s_.basis + s_.block)),
+        Q_(n_, s_.basis + s_.block),
+        MR_(n_, s_.block),
+        MW_(n_, s_.block),
         H_(MatrixXd::Zero(s_.basis + s_.block, s_.basis + s_.block)) {}
 
   LanczosOutcome run();
@@ -92,12 +116,15 @@ class ThickRestartLanczos {
  private:
   enum class Check { pending, confirmed, refreshed };
 
-  MatrixXd apply_to_mass_product(const MatrixXd& MV);
+  void apply_to_mass_product(Eigen::Ref<MatrixXd> MV);
   MatrixXd random_range_block(Index cols);
-  VectorXd mass_norms(const MatrixXd& W) const;
-  MatrixXd project_out(MatrixXd& W, Index columns) const;
-  Index append_block(const MatrixXd& W, Index start, const VectorXd& input_norms, MatrixXd& B);
-  bool append_fresh_column(Index position);
+  void mass(const Eigen::Ref<const MatrixXd>& W, Eigen::Ref<MatrixXd> MW) const;
+  MatrixXd orthogonalize(Eigen::Ref<MatrixXd> W, Eigen::Ref<MatrixXd> MW, Index columns) const;
+  Index append_block(Eigen::Ref<MatrixXd> W, Eigen::Ref<MatrixXd> MW, Index start,
+                     const VectorXd& input_norms, MatrixXd& B);
+  bool append_fresh_column(Index position, Index block_column);
+  void append_random_block();
+  void rotate(const MatrixXd& S);
   void start();
   void expand();
   void advance();
@@ -120,7 +147,10 @@ class ThickRestartLanczos {
   // Convergence is tested every `stride_` expansions (an eigendecomposition
   // of H costs O(m^3)), and always before a restart.
   Index stride_;
-  MatrixXd Q_, MQ_, H_;
+  MatrixXd Q_;   // basis, then the residual block
+  MatrixXd MR_;  // M Q[:, p:p+r]: the residual block's M-image, input of the next solve
+  MatrixXd MW_;  // workspace: M times the block being orthogonalized
+  MatrixXd H_;
   Index locked_ = 0;  // Q[:, 0:locked]: converged Ritz vectors, H diagonal and uncoupled there
   Index p_ = 0;       // basis columns whose image under Op is represented in H
   Index r_ = 0;       // residual block Q[:, p:p+r]; 0 when the Krylov space is exhausted
@@ -130,68 +160,87 @@ class ThickRestartLanczos {
   double theta_reference_ = 0.0;  // lowest wanted theta when the current check round began
 };
 
-MatrixXd ThickRestartLanczos::apply_to_mass_product(const MatrixXd& MV) {
+// MV := C^-1 MV, i.e. Op V from M V.
+void ThickRestartLanczos::apply_to_mass_product(Eigen::Ref<MatrixXd> MV) {
   applications_ += MV.cols();
-  return factor_.solve(MV);
+  factor_.solve_in_place(MV);
 }
 
 MatrixXd ThickRestartLanczos::random_range_block(Index cols) {
-  return apply_to_mass_product(M_ * random_.next(n_, cols));
+  MatrixXd W(n_, cols);
+  mass(random_.next(n_, cols), W);
+  apply_to_mass_product(W);
+  return W;
 }
 
-VectorXd ThickRestartLanczos::mass_norms(const MatrixXd& W) const {
-  const MatrixXd MW = M_ * W;
-  VectorXd norms(W.cols());
-  for (Index c = 0; c < W.cols(); ++c) norms[c] = std::sqrt(std::max(0.0, W.col(c).dot(MW.col(c))));
-  return norms;
+// MW = M W (M is symmetric).
+void ThickRestartLanczos::mass(const Eigen::Ref<const MatrixXd>& W, Eigen::Ref<MatrixXd> MW) const {
+  symmetric_times(M_, W, MW);
 }
 
-// Classical Gram-Schmidt twice against Q[:, 0:columns]; returns the total
-// coefficients (columns x W.cols()).
-MatrixXd ThickRestartLanczos::project_out(MatrixXd& W, Index columns) const {
-  MatrixXd C = MQ_.leftCols(columns).transpose() * W;
-  W.noalias() -= Q_.leftCols(columns) * C;
-  const MatrixXd C2 = MQ_.leftCols(columns).transpose() * W;
-  W.noalias() -= Q_.leftCols(columns) * C2;
-  C += C2;
+// Classical Gram-Schmidt against Q[:, 0:columns], repeated by the DGKS
+// criterion; keeps MW = M W. Returns the total coefficients
+// (columns x W.cols()).
+MatrixXd ThickRestartLanczos::orthogonalize(Eigen::Ref<MatrixXd> W, Eigen::Ref<MatrixXd> MW,
+                                           Index columns) const {
+  MatrixXd C = MatrixXd::Zero(columns, W.cols());
+  if (columns == 0) return C;
+  VectorXd before = mass_norms(W, MW);
+  MatrixXd G(columns, W.cols());
+  for (int pass = 0; pass < kMaxPasses; ++pass) {
+    gemm(true, Q_.leftCols(columns), MW, 1.0, 0.0, G);
+    gemm(false, Q_.leftCols(columns), G, -1.0, 1.0, W);
+    C += G;
+    mass(W, MW);
+    const VectorXd after = mass_norms(W, MW);
+    if ((after.array() >= kRepeatPassRatio * before.array()).all()) break;
+    before = after;
+  }
   return C;
 }
 
 // Appends the M-orthonormalized columns of W (already orthogonal to
-// Q[:, 0:start]) at Q[:, start:...]: W = Q[:, start:start+k] B with B upper
-// triangular (k x W.cols()). A dependent column is replaced by a fresh random
-// direction coupled to nothing (B row zero there). Returns k, smaller than
-// W.cols() only when the basis spans all of range(Op).
-Index ThickRestartLanczos::append_block(const MatrixXd& W, Index start, const VectorXd& input_norms,
-                                       MatrixXd& B) {
+// Q[:, 0:start]; MW = M W) at Q[:, start:...], their M-images in MR:
+// W = Q[:, start:start+k] B with B upper triangular (k x W.cols()). A
+// dependent column is replaced by a fresh random direction coupled to
+// nothing (B row zero there). Returns k, smaller than W.cols() only when the
+// basis spans all of range(Op). W and MW are used as workspace; W may be
+// Q[:, start:start+W.cols()] itself (column c is read before any column
+// after c is written).
+Index ThickRestartLanczos::append_block(Eigen::Ref<MatrixXd> W, Eigen::Ref<MatrixXd> MW, Index start,
+                                       const VectorXd& input_norms, MatrixXd& B) {
   B = MatrixXd::Zero(W.cols(), W.cols());
   Index appended = 0;
   bool exhausted = false;
   for (Index c = 0; c < W.cols(); ++c) {
-    VectorXd w = W.col(c);
+    auto w = W.col(c);
+    auto Mw = MW.col(c);
+    double beta = std::sqrt(std::max(0.0, w.dot(Mw)));
     for (int pass = 0; pass < 2 && appended > 0; ++pass) {
-      const VectorXd g = MQ_.middleCols(start, appended).transpose() * w;
+      const VectorXd g = MR_.leftCols(appended).transpose() * w;
       w.noalias() -= Q_.middleCols(start, appended) * g;
+      Mw.noalias() -= MR_.leftCols(appended) * g;
       B.col(c).head(appended) += g;
+      const double before = beta;
+      beta = std::sqrt(std::max(0.0, w.dot(Mw)));
+      if (beta >= kRepeatPassRatio * before) break;  // DGKS, as in orthogonalize
     }
     if (exhausted) continue;  // only its coefficients are still needed
     const Index position = start + appended;
-    VectorXd Mw = M_ * w;
-    double beta = std::sqrt(std::max(0.0, w.dot(Mw)));
     if (beta < kExtraPassRatio * input_norms[c]) {
-      const VectorXd g = MQ_.leftCols(position).transpose() * w;
+      const VectorXd g = Q_.leftCols(position).transpose() * Mw;
       w.noalias() -= Q_.leftCols(position) * g;
       B.col(c).head(appended) += g.tail(appended);
-      Mw = M_ * w;
+      mass(w, Mw);
       beta = std::sqrt(std::max(0.0, w.dot(Mw)));
     }
     if (beta <= kDeflationRatio * input_norms[c]) {
-      exhausted = !append_fresh_column(position);
+      exhausted = !append_fresh_column(position, appended);
       if (!exhausted) ++appended;
       continue;
     }
     Q_.col(position) = w / beta;
-    MQ_.col(position) = Mw / beta;
+    MR_.col(appended) = Mw / beta;
     B(appended, c) = beta;
     ++appended;
   }
@@ -199,40 +248,89 @@ Index ThickRestartLanczos::append_block(const MatrixXd& W, Index start, const Ve
   return appended;
 }
 
-bool ThickRestartLanczos::append_fresh_column(Index position) {
+bool ThickRestartLanczos::append_fresh_column(Index position, Index block_column) {
   VectorXd w = random_range_block(1).col(0);
-  const double initial = mass_norms(w)[0];
+  VectorXd Mw(n_);
+  mass(w, Mw);
+  const double initial = std::sqrt(std::max(0.0, w.dot(Mw)));
   // Three passes: the random vector may lie mostly in the basis already.
   for (int pass = 0; pass < 3; ++pass) {
-    const VectorXd g = MQ_.leftCols(position).transpose() * w;
+    const VectorXd g = Q_.leftCols(position).transpose() * Mw;
     w.noalias() -= Q_.leftCols(position) * g;
+    mass(w, Mw);
   }
-  const VectorXd Mw = M_ * w;
   const double beta = std::sqrt(std::max(0.0, w.dot(Mw)));
   if (!(beta > kExhaustionRatio * initial)) return false;
   Q_.col(position) = w / beta;
-  MQ_.col(position) = Mw / beta;
+  MR_.col(block_column) = Mw / beta;
   return true;
 }
 
-void ThickRestartLanczos::start() {
-  const MatrixXd W = random_range_block(s_.block);
+// A fresh random block, orthogonal to Q[:, 0:p], as the residual block
+// (formed in the columns it will occupy).
+void ThickRestartLanczos::append_random_block() {
+  auto W = Q_.middleCols(p_, s_.block);
+  auto MW = MW_.leftCols(s_.block);
+  random_.fill(W);
+  mass(W, MW);
+  W = MW;
+  apply_to_mass_product(W);
+  mass(W, MW);
+  const VectorXd norms = mass_norms(W, MW);
+  orthogonalize(W, MW, p_);
   MatrixXd B;
+  r_ = append_block(W, MW, p_, norms, B);
+}
+
+// Q[:, 0:S.cols()] = Q[:, 0:S.rows()] S in place, one slice of rows at a
+// time: a basis-sized temporary would add a basis to the peak memory.
+void ThickRestartLanczos::rotate(const MatrixXd& S) {
+  MatrixXd slice;
+  for (Index row = 0; row < n_; row += kRotationRows) {
+    const Index rows = std::min(kRotationRows, n_ - row);
+    slice.resize(rows, S.cols());
+    gemm(false, Q_.block(row, 0, rows, S.rows()), S, 1.0, 0.0, slice);
+    Q_.block(row, 0, rows, S.cols()) = slice;
+  }
+}
+
+void ThickRestartLanczos::start() {
   p_ = 0;
-  r_ = append_block(W, 0, mass_norms(W), B);
+  append_random_block();
 }
 
 // One block Lanczos step: Op applied to the residual block, which joins the
-// represented basis; the orthogonalized result becomes the new residual block.
+// represented basis; the orthogonalized result becomes the new residual
+// block. It is formed in the basis columns it will occupy.
 void ThickRestartLanczos::expand() {
   const Index j = p_ + r_;
-  MatrixXd W = apply_to_mass_product(MQ_.middleCols(p_, r_));
-  const VectorXd norms = mass_norms(W);
-  const MatrixXd C = project_out(W, j);
-  const MatrixXd D = C.bottomRows(r_);
+  auto W = Q_.middleCols(j, r_);
+  W = MR_.leftCols(r_);
+  apply_to_mass_product(W);
+  // First the components the Lanczos relation predicts: along the vectors
+  // coupled to the residual block in H (the previous block or, after a
+  // restart, the kept Ritz vectors) and along the block itself, whose
+  // M-image MR_ is at hand. They carry most of W; once they are off, one
+  // pass over the whole basis normally satisfies the DGKS test (two were
+  // needed on nearly every step otherwise, each reading the whole basis).
+  Index first = 0;
+  while (first < p_ && H_.row(first).segment(p_, r_).isZero(0.0)) ++first;
+  if (first < p_) {
+    gemm(false, Q_.middleCols(first, p_ - first), H_.block(first, p_, p_ - first, r_), -1.0, 1.0, W);
+  }
+  auto MW = MW_.leftCols(r_);
+  mass(W, MW);
+  // The reference of the deflation tests in append_block: W still holds its
+  // component along the block itself, q' M Op q > 0, so this is never at
+  // rounding level, even where the rest of W is.
+  const VectorXd norms = mass_norms(W, MW);
+  MatrixXd D = MR_.leftCols(r_).transpose() * W;
+  W.noalias() -= Q_.middleCols(p_, r_) * D;
+  MW.noalias() -= MR_.leftCols(r_) * D;
+  D += orthogonalize(W, MW, j).bottomRows(r_);
   H_.block(p_, p_, r_, r_) = 0.5 * (D + D.transpose());
   MatrixXd B;
-  const Index appended = append_block(W, j, norms, B);
+  const Index appended = append_block(W, MW, j, norms, B);
   H_.block(j, p_, appended, r_) = B;
   H_.block(p_, j, r_, appended) = B.transpose();
   p_ = j;
@@ -291,9 +389,11 @@ Index ThickRestartLanczos::leading_converged(const RitzPairs& ritz) const {
 // are locked already.
 Index ThickRestartLanczos::dominant_converged(const RitzPairs& ritz) const {
   const Index wanted = std::min<Index>(s_.count, ritz.theta.size());
-  if (wanted == 0) return 0;
+  Index working = 0;  // the leading unconverged wanted pair: the one the iteration works on
+  while (working < wanted && converged(ritz, working)) ++working;
+  if (working == wanted) return 0;
   const double limit = kRoundingShare * s_.tolerance / std::numeric_limits<double>::epsilon() *
-                       ritz.theta[wanted - 1];
+                       ritz.theta[working];
   Index k = 0;
   bool unlocked = false;
   while (k < wanted && converged(ritz, k) && ritz.theta[k] > limit) {
@@ -306,7 +406,8 @@ Index ThickRestartLanczos::dominant_converged(const RitzPairs& ritz) const {
 // Rotates the basis onto the leading `keep` Ritz vectors, locking the
 // converged wanted ones (first in the basis, H diagonal and uncoupled
 // there) and keeping the others with their arrowhead coupling to the
-// residual block, which moves down to follow them.
+// residual block, which moves down to follow them (its M-image in MR_ is
+// unchanged).
 void ThickRestartLanczos::restart(const RitzPairs& ritz, Index keep) {
   auto lockable = [&](Index i) { return i < s_.count && converged(ritz, i); };
   std::vector<Index> order;
@@ -321,11 +422,8 @@ void ThickRestartLanczos::restart(const RitzPairs& ritz, Index keep) {
   MatrixXd coupling = H_.block(p_, 0, r_, p_) * S;
   coupling.leftCols(newly_locked).setZero();
   const VectorXd theta = ritz.theta(order);
-  const Index old_p = p_;
-  Q_.leftCols(keep) = (Q_.leftCols(old_p) * S).eval();
-  MQ_.leftCols(keep) = (MQ_.leftCols(old_p) * S).eval();
-  Q_.middleCols(keep, r_) = Q_.middleCols(old_p, r_).eval();
-  MQ_.middleCols(keep, r_) = MQ_.middleCols(old_p, r_).eval();
+  rotate(S);
+  for (Index c = 0; c < r_; ++c) Q_.col(keep + c) = Q_.col(p_ + c);  // keep <= p: no overlap hazard
   H_.setZero();
   H_.diagonal().head(keep) = theta;
   H_.block(keep, 0, r_, keep) = coupling;
@@ -345,22 +443,27 @@ void ThickRestartLanczos::thick_restart(const RitzPairs& ritz) {
 // random block orthogonal to them.
 void ThickRestartLanczos::lock_and_refresh(const RitzPairs& ritz, Index keep) {
   restart(ritz, keep);
-  MatrixXd W = random_range_block(s_.block);
-  const VectorXd norms = mass_norms(W);
-  project_out(W, p_);
-  MatrixXd B;
-  r_ = append_block(W, p_, norms, B);
+  append_random_block();
   H_.block(p_, 0, H_.rows() - p_, p_).setZero();
   H_.block(0, p_, p_, H_.cols() - p_).setZero();
 }
 
 LanczosOutcome ThickRestartLanczos::finish(const RitzPairs& ritz, Index pairs, bool converged,
                                            std::string message) {
-  // Purification: x = Op y / theta, with Op y = C^-1 (M Q s) from MQ.
-  const MatrixXd MY = MQ_.leftCols(p_) * ritz.vectors.leftCols(pairs);
+  // The Ritz vectors y = Q s replace the leading basis columns, the rest of
+  // the basis is released (a shrinking realloc, in place), and each y is
+  // purified there, x = Op y / theta = C^-1 (M y) / theta, all in one
+  // multi-column solve.
+  rotate(ritz.vectors.leftCols(pairs));
+  MR_.resize(0, 0);
+  MW_.resize(0, 0);
+  Q_.conservativeResize(Eigen::NoChange, pairs);
+  MatrixXd X(n_, pairs);
+  mass(Q_, X);
+  apply_to_mass_product(X);
+  for (Index c = 0; c < pairs; ++c) Q_.col(c) = X.col(c) / ritz.theta[c];
   LanczosOutcome out;
-  out.X = apply_to_mass_product(MY);
-  for (Index i = 0; i < pairs; ++i) out.X.col(i) /= ritz.theta[i];
+  out.X = std::move(Q_);
   out.restarts = restarts_;
   out.converged = converged;
   out.message = std::move(message);
@@ -414,6 +517,8 @@ ThickRestartLanczos::Check ThickRestartLanczos::check_multiplicities(const RitzP
 }
 
 LanczosOutcome ThickRestartLanczos::run() {
+  // The solves and the basis products are all small or skinny BLAS calls.
+  const SerialBlas serial;
   start();
   while (true) {
     advance();

@@ -20,6 +20,7 @@
 #include <numbers>
 #include <string>
 
+#include "reduction/block_kernels.hpp"
 #include "reduction/eigen_solver.hpp"
 #include "reduction/mechanism.hpp"
 #include "test_pencils.hpp"
@@ -198,6 +199,19 @@ TEST_P(Lanczos, MoreWantedThanFiniteEigenvalues) {
   testing::expect_valid_pairs(p, r, kResidual, kOrthogonality);
 }
 
+TEST_P(Lanczos, SupernodalFactorMatchesDense) {
+  // The solves on a supernodal factor take another path through CHOLMOD
+  // than on the simplicial factor small pencils get by default.
+  for (const bool singular_mass : {false, true}) {
+    SCOPED_TRACE(singular_mass ? "a third massless" : "M positive definite");
+    const Pencil p = testing::random_pencil(300, 103, singular_mass);
+    SparseCholesky factor(FactorKind::supernodal);
+    ASSERT_TRUE(factor.factorize_shifted(p.K, p.M, -0.01).ok);
+    const EigenResult r = solve_lanczos(p.K, p.M, options(12), factor);
+    expect_matches_oracle(p, r, oracle(p, 12, -0.01), 12, 0.0);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(BlockSizes, Lanczos, ::testing::Values(1, 4),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return "block" + std::to_string(info.param);
@@ -288,6 +302,38 @@ TEST(LanczosFactorReuse, UnknownOrMismatchedShiftThrows) {
   EXPECT_TRUE(solve_lanczos(p.K, p.M, o, shifted).converged);
   SparseCholesky empty;
   EXPECT_THROW(solve_lanczos(p.K, p.M, o, empty), std::invalid_argument);
+}
+
+// The products the iteration runs on blocks of vectors (block_kernels.hpp)
+// against Eigen's: widths around the kernel's sweep width, compressed and
+// uncompressed storage, transposed and strided operands.
+TEST(LanczosKernels, SymmetricProductMatchesEigen) {
+  SpMat A = testing::random_spd(200, 107);
+  const MatrixXd X = MatrixXd::Random(200, 13);
+  for (const bool compressed : {true, false}) {
+    if (!compressed) A.uncompress();
+    for (const Index width : {1, 8, 11}) {
+      MatrixXd AX(200, width);
+      detail::symmetric_times(A, X.leftCols(width), AX);
+      const MatrixXd reference = A * X.leftCols(width);
+      EXPECT_LE((AX - reference).norm(), 1e-14 * reference.norm()) << width;
+    }
+  }
+}
+
+TEST(LanczosKernels, GemmMatchesEigen) {
+  const MatrixXd A = MatrixXd::Random(300, 9), B = MatrixXd::Random(300, 5), S = MatrixXd::Random(9, 4);
+  MatrixXd C = MatrixXd::Random(9, 5);
+  const MatrixXd expected = 2.0 * A.transpose() * B + 0.5 * C;
+  detail::gemm(true, A, B, 2.0, 0.5, C);
+  EXPECT_LE((C - expected).norm(), 1e-13 * expected.norm());
+  MatrixXd D = MatrixXd::Random(300, 10);
+  const MatrixXd before = D;
+  detail::gemm(false, A.middleRows(0, 300), S, -1.0, 1.0, D.middleCols(2, 4));
+  const MatrixXd updated = before.middleCols(2, 4) - A * S;
+  EXPECT_LE((D.middleCols(2, 4) - updated).norm(), 1e-13 * updated.norm());
+  EXPECT_TRUE(D.leftCols(2) == before.leftCols(2));
+  EXPECT_TRUE(D.rightCols(4) == before.rightCols(4));
 }
 
 TEST(LanczosAutomatic, SmallProblemsUseTheDenseSolver) {

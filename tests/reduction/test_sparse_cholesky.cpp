@@ -1,3 +1,4 @@
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -79,6 +80,48 @@ TEST_P(SparseCholeskyKinds, ZeroRowFailsAtItsColumn) {
   EXPECT_EQ(status.failed_column, 57);
 }
 
+TEST_P(SparseCholeskyKinds, SolveInPlaceOnColumnsOfALargerMatrix) {
+  const SpMat A = random_spd(400, 13);
+  SparseCholesky chol(GetParam());
+  ASSERT_TRUE(chol.factorize(A).ok);
+  const MatrixXd B = random_block(400, 7, 17);
+  const MatrixXd X = chol.solve(B);
+  EXPECT_LE(relative_difference(X, Eigen::SimplicialLDLT<SpMat>(A).solve(B)), solver_agreement(A));
+  MatrixXd big = random_block(400, 12, 19);
+  const MatrixXd before = big;
+  big.middleCols(3, 7) = B;
+  chol.solve_in_place(big.middleCols(3, 7));
+  EXPECT_TRUE(big.middleCols(3, 7) == X);  // the same arithmetic as solve()
+  EXPECT_TRUE(big.leftCols(3) == before.leftCols(3));
+  EXPECT_TRUE(big.rightCols(2) == before.rightCols(2));
+  EXPECT_EQ(chol.statistics().rhs_solved, 14);
+}
+
+TEST_P(SparseCholeskyKinds, MatrixOutsideTheAnalyzedPatternIsReanalyzed) {
+  // A supernodal factor is checked against its own row structure, a
+  // simplicial one against the analyzed pattern it keeps.
+  const SpMat A = random_spd(150, 8);
+  SpMat D(150, 150);
+  D.setIdentity();
+  SparseCholesky chol(GetParam());
+  chol.analyze(D);
+  ASSERT_TRUE(chol.factorize(A).ok);
+  EXPECT_EQ(chol.statistics().analyses, 2);
+  const VectorXd b = VectorXd::LinSpaced(150, -1.0, 1.0);
+  EXPECT_LE((A * chol.solve(b) - b).norm() / b.norm(), solver_agreement(A));
+  // A subset of the pattern (the diagonal) reuses the analysis of A.
+  ASSERT_TRUE(chol.factorize(D).ok);
+  EXPECT_EQ(chol.statistics().analyses, 2);
+  EXPECT_LE((chol.solve(b) - b).norm(), 10 * kEps * b.norm());
+  // So does K - sigma M with M inside the pattern of A (its diagonal).
+  SpMat M = A;
+  M.prune([](Index i, Index j, double) { return i == j; });
+  ASSERT_TRUE(chol.factorize_shifted(A, M, -0.5).ok);
+  EXPECT_EQ(chol.statistics().analyses, 2);
+  const SpMat shifted = A + 0.5 * M;
+  EXPECT_LE((shifted * chol.solve(b) - b).norm() / b.norm(), solver_agreement(shifted));
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, SparseCholeskyKinds,
                          ::testing::Values(FactorKind::automatic, FactorKind::simplicial,
                                            FactorKind::supernodal));
@@ -126,22 +169,6 @@ TEST(SparseCholesky, NewShiftReusesTheAnalysis) {
   EXPECT_EQ(chol.statistics().factorizations, 3);
 }
 
-TEST(SparseCholesky, MatrixOutsideTheAnalyzedPatternIsReanalyzed) {
-  const SpMat A = random_spd(150, 8);
-  SpMat D(150, 150);
-  D.setIdentity();
-  SparseCholesky chol;
-  chol.analyze(D);
-  ASSERT_TRUE(chol.factorize(A).ok);
-  EXPECT_EQ(chol.statistics().analyses, 2);
-  const VectorXd b = VectorXd::LinSpaced(150, -1.0, 1.0);
-  EXPECT_LE((A * chol.solve(b) - b).norm() / b.norm(), solver_agreement(A));
-  // A subset of the pattern (the diagonal) reuses the analysis of A.
-  ASSERT_TRUE(chol.factorize(D).ok);
-  EXPECT_EQ(chol.statistics().analyses, 2);
-  EXPECT_LE((chol.solve(b) - b).norm(), 10 * kEps * b.norm());
-}
-
 TEST(SparseCholesky, RelativePivotFlagsNearSingularMatrices) {
   // tridiag(-1, 4, -1): elimination preserves diagonal dominance, so in any
   // order every pivot is at least 4 - 2, half its diagonal.
@@ -180,6 +207,22 @@ TEST(SparseCholesky, MovedFactorizationKeepsWorking) {
   third = std::move(second);
   EXPECT_TRUE(third.factorized());
   EXPECT_EQ(third.rows(), 120);
+}
+
+TEST(SparseCholesky, SolvesLeaveTheBlasThreadCountAsTheyFoundIt) {
+  // Solves run on one OpenBLAS thread (see sparse_cholesky.cpp) and must
+  // give the caller's setting back.
+  const auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  const auto set = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (get == nullptr || set == nullptr) GTEST_SKIP() << "the BLAS in this process is not OpenBLAS";
+  const int original = get();
+  set(2);
+  const int two = get();  // 2, or 1 where OpenBLAS was built for one thread
+  SparseCholesky chol(FactorKind::supernodal);
+  ASSERT_TRUE(chol.factorize(random_spd(300, 23)).ok);
+  chol.solve(random_block(300, 3, 29));
+  EXPECT_EQ(get(), two);
+  set(original);
 }
 
 TEST(SparseCholesky, InvalidUseThrows) {
