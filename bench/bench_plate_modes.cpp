@@ -63,6 +63,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
 #include "io/calculix_writer.hpp"
@@ -75,6 +76,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace rigflex;
+using bench::clamped_plate;
+using bench::divisions_for;
+using bench::loadavg;
+using bench::reset_peak_rss;
+using bench::status_kb;
 using clock_type = std::chrono::steady_clock;
 
 double seconds_since(clock_type::time_point t0) {
@@ -138,54 +144,12 @@ Options parse(int argc, char** argv) {
 
 // ---- memory -------------------------------------------------------------
 
-long status_kb(const char* key) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
-  return 0;
-}
-std::string loadavg() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
-}
-// Resets VmHWM to the current RSS (Linux >= 4.0); false if not permitted.
-bool reset_peak_rss() {
-  std::ofstream out("/proc/self/clear_refs");
-  out << "5";
-  out.close();
-  return static_cast<bool>(out);
-}
-
+// Hands memory freed by assembly back to the system, so that it does not
+// count as room for the solver.
 void release_freed_memory() {
 #ifdef __GLIBC__
   malloc_trim(0);
 #endif
-}
-
-// ---- model ----------------------------------------------------------------
-
-// n x n MITC4 elements; interior nodes carry 6 DOFs: 6 (n-1)^2.
-int divisions_for(long dofs) { return static_cast<int>(std::lround(std::sqrt(dofs / 6.0))) + 1; }
-
-fe::Model clamped_plate(int n) {
-  fe::Model m;
-  m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
-  m.shell_sections["plate"] = {"plate", "steel", 0.010};
-  fe::NodeMerger merger(m);
-  fe::PatchSpec p;
-  p.id = "plate";
-  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(1, 0, 0), fe::Vec3(1, 1, 0), fe::Vec3(0, 1, 0)};
-  p.nx = p.ny = n;
-  p.section = "plate";
-  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
-  for (int r = 0; r < g.rows; ++r)
-    for (int c = 0; c < g.cols; ++c)
-      if (r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1)
-        m.supports.push_back({"edge", g.at(r, c), {true, true, true, true, true, true}});
-  return m;
 }
 
 // ---- Matrix Market (lower triangle of a symmetric matrix) ------------------
