@@ -106,13 +106,6 @@ struct Options {
   fs::path scipy_script = fs::path(__FILE__).parent_path() / "scipy_eigsh.py";
 };
 
-long parse_size(std::string s) {
-  double scale = 1;
-  if (!s.empty() && (s.back() == 'k' || s.back() == 'K')) scale = 1e3, s.pop_back();
-  else if (!s.empty() && (s.back() == 'm' || s.back() == 'M')) scale = 1e6, s.pop_back();
-  return std::lround(std::stod(s) * scale);
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -122,16 +115,13 @@ Options parse(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--sizes") {
-      o.sizes.clear();
-      std::istringstream in(value());
-      std::string item;
-      while (std::getline(in, item, ',')) o.sizes.push_back(parse_size(item));
+      o.sizes = bench::parse_sizes(value());
     } else if (a == "--modes") o.modes = std::stoi(value());
     else if (a == "--block") o.block = std::stoi(value());
     else if (a == "--repeat") o.repeat = std::max(1, std::stoi(value()));
     else if (a == "--skip-ccx") o.ccx = false;
     else if (a == "--skip-scipy") o.scipy = false;
-    else if (a == "--max-peer-dofs") o.max_peer_dofs = parse_size(value());
+    else if (a == "--max-peer-dofs") o.max_peer_dofs = bench::parse_size(value());
     else if (a == "--ccx-threads") o.ccx_threads = std::stoi(value());
     else if (a == "--scipy-timeout") o.scipy_timeout = std::stod(value());
     else if (a == "--workdir") o.workdir = value();

@@ -46,13 +46,6 @@ struct Options {
   int repeat = 1;
 };
 
-long parse_size(std::string s) {
-  double scale = 1;
-  if (!s.empty() && (s.back() == 'k' || s.back() == 'K')) scale = 1e3, s.pop_back();
-  else if (!s.empty() && (s.back() == 'm' || s.back() == 'M')) scale = 1e6, s.pop_back();
-  return std::lround(std::stod(s) * scale);
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -62,10 +55,7 @@ Options parse(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--sizes") {
-      o.sizes.clear();
-      std::istringstream in(value());
-      std::string item;
-      while (std::getline(in, item, ',')) o.sizes.push_back(parse_size(item));
+      o.sizes = bench::parse_sizes(value());
     } else if (a == "--modes") {
       o.modes = std::stoi(value());
     } else if (a == "--repeat") {

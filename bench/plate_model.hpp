@@ -1,9 +1,12 @@
 #pragma once
-// The clamped steel plate of the benchmarks and the memory probes they share.
+// The clamped steel plate of the benchmarks, their --sizes syntax and the
+// memory probes they share.
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "fe/meshers.hpp"
 #include "fe/model.hpp"
@@ -31,6 +34,21 @@ inline fe::Model clamped_plate(int n) {
       if (r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1)
         m.supports.push_back({"edge", g.at(r, c), {true, true, true, true, true, true}});
   return m;
+}
+
+// "10k,100k,1M" -> 10000, 100000, 1000000 (k and M suffixes, either case).
+inline long parse_size(std::string s) {
+  double scale = 1;
+  if (!s.empty() && (s.back() == 'k' || s.back() == 'K')) scale = 1e3, s.pop_back();
+  else if (!s.empty() && (s.back() == 'm' || s.back() == 'M')) scale = 1e6, s.pop_back();
+  return std::lround(std::stod(s) * scale);
+}
+inline std::vector<long> parse_sizes(const std::string& list) {
+  std::vector<long> sizes;
+  std::istringstream in(list);
+  std::string item;
+  while (std::getline(in, item, ',')) sizes.push_back(parse_size(item));
+  return sizes;
 }
 
 // A /proc/self/status field in kB (VmRSS, VmHWM), 0 if absent.
