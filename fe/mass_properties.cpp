@@ -5,20 +5,23 @@
 
 namespace rigflex::fe {
 
+Eigen::Matrix<double, 6, 6> rigid_motion_at(const Vec3& x) {
+  Eigen::Matrix<double, 6, 6> b = Eigen::Matrix<double, 6, 6>::Identity();
+  // u = t + theta x position
+  b(0, 4) = x.z();
+  b(0, 5) = -x.y();
+  b(1, 3) = -x.z();
+  b(1, 5) = x.x();
+  b(2, 3) = x.y();
+  b(2, 4) = -x.x();
+  return b;
+}
+
 Eigen::MatrixXd rigid_body_modes(const Model& model, const Vec3& about) {
   const auto n = static_cast<Eigen::Index>(model.nodes.size());
   Eigen::MatrixXd phi = Eigen::MatrixXd::Zero(6 * n, 6);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Vec3 x = model.nodes[static_cast<size_t>(i)].x - about;
-    auto b = phi.block<6, 6>(6 * i, 0);
-    b.setIdentity();
-    // u = t + theta x position
-    b(0, 4) = x.z();
-    b(0, 5) = -x.y();
-    b(1, 3) = -x.z();
-    b(1, 5) = x.x();
-    b(2, 3) = x.y();
-    b(2, 4) = -x.x();
+    phi.block<6, 6>(6 * i, 0) = rigid_motion_at(model.nodes[static_cast<size_t>(i)].x - about);
   }
   return phi;
 }

@@ -15,6 +15,11 @@ struct MassProperties {
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
 };
 
+// The six DOFs of a point at x (relative to the centre of rotation) under
+// the six unit rigid motions: translations X Y Z, rotations about X Y Z
+// (u = t + theta x x).
+Eigen::Matrix<double, 6, 6> rigid_motion_at(const Vec3& x);
+
 // 6N x 6 rigid-body modes (translations, then rotations about `about`).
 Eigen::MatrixXd rigid_body_modes(const Model& model, const Vec3& about = Vec3::Zero());
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "fe/mass_properties.hpp"
+
 namespace rigflex::reduction {
 namespace {
 
@@ -41,15 +43,7 @@ Eigen::MatrixXd interface_rigid_motions(const std::vector<InterfaceNode>& nodes,
   for (size_t r = 0; r < dofs.size(); ++r) {
     const auto node = std::find_if(nodes.begin(), nodes.end(), [&](const InterfaceNode& n) { return n.id == dofs[r].node; });
     if (node == nodes.end()) throw std::invalid_argument("interface DOF of a node that is not an interface node");
-    const fe::Vec3& x = node->position;
-    const int d = dofs[r].local;
-    const auto row = static_cast<Eigen::Index>(r);
-    if (d < 3) {
-      R(row, d) = 1.0;
-      for (int k = 0; k < 3; ++k) R(row, 3 + k) = fe::Vec3::Unit(k).cross(x)(d);  // u = theta x position
-    } else {
-      R(row, d) = 1.0;
-    }
+    R.row(static_cast<Eigen::Index>(r)) = fe::rigid_motion_at(node->position).row(dofs[r].local);
   }
   return R;
 }
