@@ -6,12 +6,14 @@
 #include "io/input_error.hpp"
 
 int main(int argc, char** argv) {
-  CLI::App app{"rigflex: frame models, modes and reduction for multi-filar pendulum rigs"};
+  CLI::App app{"rigflex: frame models, modes, reduction, rig simulation and design check for multi-filar pendulum rigs"};
   app.require_subcommand(1);
   int exit_code = 0;
   rigflex::app::add_mass_command(app, exit_code);
   rigflex::app::add_modes_command(app, exit_code);
   rigflex::app::add_reduce_command(app, exit_code);
+  rigflex::app::add_simulate_command(app, exit_code);
+  rigflex::app::add_check_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -53,7 +53,9 @@ vtkSmartPointer<vtkUnstructuredGrid> mesh_grid(const fe::Model& model) {
   return grid;
 }
 
-std::string pvd(const Eigen::VectorXd& f, const std::vector<std::string>& files) {
+}  // namespace
+
+std::string mode_collection(const Eigen::VectorXd& f, const std::vector<std::string>& files) {
   std::ostringstream o;
   o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
   o.precision(10);
@@ -63,8 +65,6 @@ std::string pvd(const Eigen::VectorXd& f, const std::vector<std::string>& files)
   o << "  </Collection>\n</VTKFile>\n";
   return o.str();
 }
-
-}  // namespace
 
 void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model& model, const fe::DofMap& dofs,
                           const Eigen::VectorXd& frequencies_hz, const Eigen::MatrixXd& vectors) {
@@ -105,7 +105,7 @@ void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model
       if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + tmp.string());
     });
   }
-  batch.add_text(dir / "modes.pvd", pvd(frequencies_hz, names));
+  batch.add_text(dir / "modes.pvd", mode_collection(frequencies_hz, names));
 }
 
 }  // namespace rigflex::io

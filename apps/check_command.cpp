@@ -1,0 +1,117 @@
+// rigflex check RIG.yaml [--out DIR]: the rig's swing and deformation modes
+// at static equilibrium, the ratio of the first deformation frequency to the
+// highest swing frequency, the verdict, where the strain energy sits and how
+// much stiffer the dominant component must be. Writes DIR/check.json and the
+// rig's modes for ParaView (DIR/rig_modes.pvd).
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "apps/commands.hpp"
+#include "io/atomic_file.hpp"
+#include "io/rig_reader.hpp"
+#include "io/rig_vtk.hpp"
+#include "rig/design_check.hpp"
+
+namespace rigflex::app {
+namespace {
+
+struct CheckArgs {
+  std::string rig;
+  std::string out;
+  bool quiet = false;
+};
+
+nlohmann::json optional_number(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); }
+
+nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r) {
+  nlohmann::json j;
+  j["rig"] = model.name;
+  j["swing_frequencies_hz"] = r.swing_frequencies_hz;
+  j["first_deformation_frequency_hz"] = optional_number(r.first_deformation_frequency_hz);
+  j["ratio"] = optional_number(r.ratio);
+  j["verdict"] = rig::to_string(r.verdict);
+  j["strain_energy_share"] = {{"fixed_frame", r.share_fixed_frame},
+                              {"rods", r.share_rods},
+                              {"carrying_frame", r.share_carrying_frame}};
+  if (r.advice) {
+    j["stiffen"] = {{"component", rig::to_string(r.advice->component)},
+                    {"stiffness_factor", optional_number(r.advice->factor)},
+                    {"ratio_with_component_1e4_stiffer", r.advice->ratio_limit},
+                    {"message", r.advice->message}};
+  }
+  nlohmann::json modes = nlohmann::json::array();
+  for (const auto& m : r.linearization.modes) {
+    const double total = m.strain.total();
+    modes.push_back({{"frequency_hz", m.frequency_hz},
+                     {"kind", rig::to_string(m.kind)},
+                     {"elastic_fraction", m.elastic_fraction},
+                     {"strain_energy_share",
+                      {{"fixed_frame", total > 0 ? m.strain.fixed_frame / total : 0.0},
+                       {"rods", total > 0 ? m.strain.rods / total : 0.0},
+                       {"carrying_frame", total > 0 ? m.strain.carrying_frame / total : 0.0}}}});
+  }
+  j["modes"] = modes;
+  const auto& eq = r.linearization.equilibrium;
+  j["equilibrium"] = {{"newton_steps", eq.iterations}, {"residual", eq.residual}};
+  j["eigen_check"] = {{"max_residual", r.linearization.eigen.residuals.maxCoeff()},
+                      {"orthogonality_error", r.linearization.eigen.orthogonality_error},
+                      {"stiffness_asymmetry", r.linearization.asymmetry}};
+  return j;
+}
+
+void print(const rig::CheckResult& r) {
+  std::printf("%5s %12s  %-15s %8s %8s %8s\n", "mode", "f [Hz]", "kind", "fixed", "rods", "carrying");
+  int k = 0;
+  for (const auto& m : r.linearization.modes) {
+    const double t = m.strain.total() > 0 ? m.strain.total() : 1.0;
+    std::printf("%5d %12.5f  %-15s %8.3f %8.3f %8.3f\n", ++k, m.frequency_hz, rig::to_string(m.kind),
+                m.strain.fixed_frame / t, m.strain.rods / t, m.strain.carrying_frame / t);
+  }
+  std::printf("(strain energy shares of each mode by component)\n");
+  std::printf("swing frequencies:");
+  for (double f : r.swing_frequencies_hz) std::printf(" %.4f", f);
+  std::printf(" Hz\n");
+  if (!r.first_deformation_frequency_hz) {
+    std::printf("no deformation mode: frames and rods are rigid in this model\nverdict: %s\n", rig::to_string(r.verdict));
+    return;
+  }
+  std::printf("first deformation frequency f1 = %.4f Hz, ratio f1 / highest swing = %.3f\n",
+              *r.first_deformation_frequency_hz, *r.ratio);
+  std::printf("verdict: %s (>= 4 safe, 3-4 marginal, < 3 use the flexible algorithm)\n", rig::to_string(r.verdict));
+  std::printf("strain energy in the first deformation mode: fixed frame %.1f %%, rods %.1f %%, carrying frame %.1f %%\n",
+              100 * r.share_fixed_frame, 100 * r.share_rods, 100 * r.share_carrying_frame);
+  if (r.advice) std::printf("advice: %s\n", r.advice->message.c_str());
+}
+
+int run(const CheckArgs& a) {
+  io::RigReadOptions ro;
+  if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "check: frame reduction: %s\n", s.c_str()); };
+  const rig::RigModel model = io::read_rig(a.rig, ro);
+  const rig::CheckResult r = rig::design_check(model);
+  print(r);
+  if (!a.out.empty()) {
+    const std::filesystem::path out(a.out);
+    std::filesystem::create_directories(out);
+    io::FileBatch batch;
+    batch.add_text(out / "check.json", to_json(model, r).dump(2) + "\n");
+    const rig::RigSystem rig(model);
+    io::add_rig_mode_files(batch, out, rig, r.linearization);
+    batch.commit();
+    std::printf("wrote %s/check.json and rig_modes.pvd (%zu modes)\n", a.out.c_str(), r.linearization.modes.size());
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("check", "Design check: first deformation frequency against the swing frequencies");
+  auto a = std::make_shared<CheckArgs>();
+  cmd->add_option("rig", a->rig, "rig YAML file")->required();
+  cmd->add_option("--out", a->out, "folder for check.json and the rig's mode shapes");
+  cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
+  cmd->callback([a, &exit_code] { exit_code = run(*a); });
+}
+
+}  // namespace rigflex::app

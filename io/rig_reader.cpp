@@ -1,0 +1,341 @@
+#include "io/rig_reader.hpp"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "fe/error.hpp"
+#include "io/model_reader.hpp"
+#include "io/reduced_export.hpp"
+#include "io/yaml_fields.hpp"
+#include "reduction/frame_reduction.hpp"
+#include "rig/effects.hpp"
+#include "rig/frame_models.hpp"
+
+namespace rigflex::io {
+namespace {
+
+using rig::Vec3;
+
+struct Reader {
+  YamlContext ctx;
+  std::filesystem::path base;
+  const RigReadOptions& options;
+  int rods = 0;
+
+  // Per-rod values: a list of n, or one value for all rods.
+  std::vector<double> per_rod(const YAML::Node& map, const std::string& key) const {
+    const YAML::Node v = ctx.required(map, key);
+    if (v.IsScalar()) return std::vector<double>(rods, ctx.as_number(v, key));
+    return ctx.numbers(map, key, rods);
+  }
+
+  std::vector<Vec3> per_rod_vectors(const YAML::Node& map, const std::string& key) const {
+    const YAML::Node v = ctx.required(map, key);
+    ctx.expect_sequence(v, key);
+    if (static_cast<int>(v.size()) != rods) {
+      ctx.fail(v, key, "needs one [x, y, z] per rod (" + std::to_string(rods) + "), got " + std::to_string(v.size()));
+    }
+    std::vector<Vec3> out;
+    for (const auto& e : v) out.push_back(ctx.as_vec3(e, key));
+    return out;
+  }
+
+  rig::RigGeometry geometry(const YAML::Node& g) const {
+    ctx.expect_map(g, "geometry", {"gravity", "reference_point", "rods"});
+    rig::RigGeometry out;
+    out.gravity = ctx.number_or(g, "gravity", 9.80665);
+    out.reference_point = ctx.vec3(g, "reference_point");
+    const YAML::Node rods_node = ctx.required(g, "rods");
+    ctx.expect_sequence(rods_node, "rods");
+    for (const auto& r : rods_node) {
+      ctx.expect_map(r, "rods[]", {"upper", "lower", "length", "encoder_axis"});
+      rig::RodGeometry rod;
+      rod.upper = ctx.vec3(r, "upper");
+      rod.lower = ctx.vec3(r, "lower");
+      rod.length = ctx.number(r, "length");
+      rod.encoder_axis = ctx.vec3(r, "encoder_axis");
+      out.rods.push_back(rod);
+    }
+    return out;
+  }
+
+  fe::MassProperties body(const YAML::Node& b) const {
+    ctx.expect_map(b, "body", {"mass", "cog", "inertia", "name"});
+    fe::MassProperties m;
+    m.mass = ctx.number(b, "mass");
+    m.cog = ctx.vec3(b, "cog");
+    const auto J = ctx.numbers(b, "inertia", 6);
+    m.inertia = rig::inertia_tensor({J[0], J[1], J[2], J[3], J[4], J[5]});
+    return m;
+  }
+
+  rig::SensorOptions sensors(const YAML::Node& s) const {
+    ctx.expect_map(s, "sensors", {"sample_rate", "load_cell", "encoder"});
+    rig::SensorOptions o;
+    o.sample_rate_hz = ctx.number_or(s, "sample_rate", o.sample_rate_hz);
+    if (s["load_cell"]) {
+      const YAML::Node lc = s["load_cell"];
+      ctx.expect_map(lc, "load_cell", {"noise", "resolution"});
+      o.force_noise_n = ctx.number_or(lc, "noise", 0.0);
+      o.force_resolution_n = ctx.number_or(lc, "resolution", 0.0);
+    }
+    if (s["encoder"]) {
+      const YAML::Node e = s["encoder"];
+      ctx.expect_map(e, "encoder", {"bits", "noise"});
+      o.encoder_bits = ctx.integer_or(e, "bits", 0);
+      o.angle_noise_rad = ctx.number_or(e, "noise", 0.0);
+    }
+    return o;
+  }
+
+  rig::ReleaseOptions release(const YAML::Node& r) const {
+    ctx.expect_map(r, "release", {"push_duration", "push_acceleration", "push_yaw_acceleration", "initial"});
+    rig::ReleaseOptions o;
+    o.push_duration_s = ctx.number_or(r, "push_duration", o.push_duration_s);
+    if (r["push_acceleration"]) {
+      const auto a = ctx.numbers(r, "push_acceleration", 2);
+      o.push_acceleration = {a[0], a[1]};
+    }
+    o.push_yaw_acceleration = ctx.number_or(r, "push_yaw_acceleration", o.push_yaw_acceleration);
+    if (r["initial"]) {
+      const YAML::Node list = r["initial"];
+      ctx.expect_sequence(list, "initial");
+      for (const auto& e : list) {
+        ctx.expect_map(e, "initial[]", {"x", "y", "yaw", "velocity", "angular_velocity"});
+        rig::InitialCondition ic;
+        ic.x = ctx.number_or(e, "x", 0.0);
+        ic.y = ctx.number_or(e, "y", 0.0);
+        ic.yaw = ctx.number_or(e, "yaw", 0.0);
+        if (e["velocity"]) ic.velocity = ctx.vec3(e, "velocity");
+        if (e["angular_velocity"]) ic.angular_velocity = ctx.vec3(e, "angular_velocity");
+        o.initial.push_back(ic);
+      }
+    }
+    return o;
+  }
+
+  rig::SimulationOptions simulation(const YAML::Node& s) const {
+    ctx.expect_map(s, "simulation", {"relative_tolerance", "position_tolerance", "max_step"});
+    rig::SimulationOptions o;
+    o.relative_tolerance = ctx.number_or(s, "relative_tolerance", o.relative_tolerance);
+    o.position_tolerance = ctx.number_or(s, "position_tolerance", o.position_tolerance);
+    o.max_step_s = ctx.number_or(s, "max_step", o.max_step_s);
+    return o;
+  }
+
+  // A flexible frame: a `rigflex reduce` export, or a frame model reduced here.
+  reduction::ReducedFrame frame(const YAML::Node& e, const std::string& key, reduction::FrameSupport support) const {
+    const bool exported = static_cast<bool>(e["reduced"]);
+    if (exported == static_cast<bool>(e["model"])) ctx.fail(e, key, "needs exactly one of 'reduced' or 'model'");
+    if (exported) {
+      const std::filesystem::path dir = base / ctx.text(e, "reduced");
+      try {
+        return read_reduced_frame(dir);
+      } catch (const InputError&) {
+        throw;
+      } catch (const std::exception& x) {
+        ctx.fail(e["reduced"], key + ".reduced", x.what());
+      }
+    }
+    const std::filesystem::path file = base / ctx.text(e, "model");
+    const ModelFile model = read_model(file);
+    reduction::FrameReductionOptions o;
+    o.interface_set = ctx.text(e, "interface");
+    const std::string method = ctx.text_or(e, "method", "guyan");
+    const auto m = reduction::parse_reduction_method(method);
+    if (!m) ctx.fail(e["method"], "method", "unknown method '" + method + "' (guyan, craig-bampton)");
+    o.method = *m;
+    o.modes = ctx.integer_or(e, "modes", 0);
+    o.cutoff_hz = ctx.optional_number(e, "cutoff");
+    o.support = support;
+    o.zeta = ctx.number_or(e, "zeta", 0.02);
+    o.progress = options.progress;
+    try {
+      reduction::ReducedFrame f = reduction::reduce_frame(model.model, o);
+      f.name = model.name;
+      return f;
+    } catch (const fe::ModelError& x) {
+      ctx.fail(e["model"], key + ".model", x.what());
+    } catch (const std::invalid_argument& x) {
+      ctx.fail(e, key, x.what());
+    } catch (const reduction::ReductionError& x) {
+      ctx.fail(e["model"], key + ".model", x.what());
+    }
+  }
+
+  rig::FrameMatching matching(const YAML::Node& e) const {
+    rig::FrameMatching m;
+    if (e["offset"]) m.offset = ctx.vec3(e, "offset");
+    m.tolerance = ctx.number_or(e, "tolerance", m.tolerance);
+    return m;
+  }
+
+  std::shared_ptr<const rig::Effect> effect(const std::string& name, const YAML::Node& e,
+                                            const rig::RigGeometry& g) const {
+    const std::string key = "effects." + name;
+    auto frame_keys = {"enabled", "reduced", "model", "interface", "method", "modes", "cutoff", "zeta", "offset",
+                       "tolerance"};
+    if (name == "fixed_frame_flexibility") {
+      ctx.expect_map(e, key, frame_keys);
+      const auto f = frame(e, key, reduction::FrameSupport::grounded);
+      return guarded(e, key, [&] { return std::make_shared<rig::FixedFrameFlexibility>(rig::fixed_frame_model(f, g, matching(e))); });
+    }
+    if (name == "carrying_frame_flexibility") {
+      ctx.expect_map(e, key, frame_keys);
+      const auto f = frame(e, key, reduction::FrameSupport::free);
+      return guarded(e, key, [&] { return std::make_shared<rig::CarryingFrameFlexibility>(rig::carrying_frame_model(f, g, matching(e))); });
+    }
+    if (name == "rod_compliance") {
+      ctx.expect_map(e, key, {"enabled", "stiffness", "youngs_modulus", "area"});
+      if (static_cast<bool>(e["stiffness"]) == static_cast<bool>(e["area"])) {
+        ctx.fail(e, key, "needs either 'stiffness' (N/m per rod) or 'youngs_modulus' and 'area' (EA/L)");
+      }
+      if (e["stiffness"]) return std::make_shared<rig::RodCompliance>(per_rod(e, "stiffness"));
+      const double E = ctx.number(e, "youngs_modulus");
+      const auto A = per_rod(e, "area");
+      std::vector<double> k;
+      for (int i = 0; i < rods; ++i) k.push_back(E * A[i] / g.rods[i].length);
+      return std::make_shared<rig::RodCompliance>(k);
+    }
+    if (name == "rod_mass") {
+      ctx.expect_map(e, key, {"enabled", "mass"});
+      return std::make_shared<rig::RodMass>(per_rod(e, "mass"));
+    }
+    if (name == "joint_friction") {
+      ctx.expect_map(e, key, {"enabled", "viscous", "coulomb", "regularization", "joints"});
+      rig::JointFrictionParameters p;
+      if (!e["viscous"] && !e["coulomb"]) ctx.fail(e, key, "needs 'viscous' (N m s/rad) and/or 'coulomb' (N m)");
+      p.viscous = ctx.number_or(e, "viscous", 0.0);
+      p.coulomb = ctx.number_or(e, "coulomb", 0.0);
+      p.regularization = ctx.number_or(e, "regularization", p.regularization);
+      const std::string joints = ctx.text_or(e, "joints", "both");
+      if (joints != "both" && joints != "upper" && joints != "lower") {
+        ctx.fail(e["joints"], "joints", "must be both, upper or lower");
+      }
+      p.upper = joints != "lower";
+      p.lower = joints != "upper";
+      return std::make_shared<rig::JointFriction>(p);
+    }
+    if (name == "air_drag") {
+      ctx.expect_map(e, key, {"enabled", "density", "cd_area", "rotational", "centre"});
+      rig::AirDragParameters p;
+      p.density = ctx.number_or(e, "density", p.density);
+      if (!e["cd_area"] && !e["rotational"]) ctx.fail(e, key, "needs 'cd_area' (m^2) and/or 'rotational'");
+      p.cd_area = ctx.number_or(e, "cd_area", 0.0);
+      p.rotational = ctx.number_or(e, "rotational", 0.0);
+      if (e["centre"]) p.centre = ctx.vec3(e, "centre");
+      return std::make_shared<rig::AirDrag>(p);
+    }
+    if (name == "encoder_offset") {
+      ctx.expect_map(e, key, {"enabled", "alpha", "beta"});
+      return std::make_shared<rig::EncoderOffset>(per_rod(e, "alpha"), per_rod(e, "beta"));
+    }
+    if (name == "rod_length_error") {
+      ctx.expect_map(e, key, {"enabled", "delta"});
+      return std::make_shared<rig::RodLengthError>(per_rod(e, "delta"));
+    }
+    if (name == "joint_position_error") {
+      ctx.expect_map(e, key, {"enabled", "upper", "lower"});
+      const auto zero = std::vector<Vec3>(rods, Vec3::Zero());
+      return std::make_shared<rig::JointPositionError>(e["upper"] ? per_rod_vectors(e, "upper") : zero,
+                                                       e["lower"] ? per_rod_vectors(e, "lower") : zero);
+    }
+    if (name == "load_cell_gain") {
+      ctx.expect_map(e, key, {"enabled", "gain", "offset"});
+      if (!e["gain"] && !e["offset"]) ctx.fail(e, key, "needs 'gain' and/or 'offset' (N)");
+      return std::make_shared<rig::LoadCellGain>(e["gain"] ? per_rod(e, "gain") : std::vector<double>(rods, 1.0),
+                                                 e["offset"] ? per_rod(e, "offset") : std::vector<double>(rods, 0.0));
+    }
+    std::string known;
+    for (const char* n : rig::effect_names()) known += std::string(known.empty() ? "" : ", ") + n;
+    ctx.fail(e, key, "unknown effect '" + name + "' (known: " + known + ")");
+  }
+
+  template <class F>
+  std::shared_ptr<const rig::Effect> guarded(const YAML::Node& e, const std::string& key, F make) const {
+    try {
+      return make();
+    } catch (const std::invalid_argument& x) {
+      ctx.fail(e, key, x.what());
+    }
+  }
+};
+
+// The node a validation message's field path ("geometry.rods[2].length") names.
+YAML::Node node_at(const YAML::Node& root, const std::string& path) {
+  YAML::Node n = root;
+  std::stringstream ss(path);
+  std::string part;
+  while (std::getline(ss, part, '.')) {
+    std::string name = part;
+    int index = -1;
+    if (const auto b = part.find('['); b != std::string::npos) {
+      name = part.substr(0, b);
+      index = std::stoi(part.substr(b + 1)) - 1;
+    }
+    const YAML::Node next = n[name];
+    if (!next) return n;
+    n = next;
+    if (index >= 0 && n.IsSequence() && index < static_cast<int>(n.size())) n = n[index];
+  }
+  return n;
+}
+
+}  // namespace
+
+rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,
+                        const RigReadOptions& options) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source, e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
+  }
+  Reader r{YamlContext(source), base, options};
+  const YamlContext& ctx = r.ctx;
+  if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
+  ctx.expect_map(root, "rig", {"name", "geometry", "body", "sensors", "release", "simulation", "effects"});
+  rig::RigModel model;
+  model.name = ctx.text_or(root, "name", std::filesystem::path(source).stem().string());
+  model.geometry = r.geometry(ctx.required(root, "geometry"));
+  r.rods = model.geometry.rod_count();
+  if (r.rods != 3 && r.rods != 4) {
+    ctx.fail(root["geometry"]["rods"], "rods", "a rig has 3 or 4 rods (got " + std::to_string(r.rods) + ")");
+  }
+  model.body = r.body(ctx.required(root, "body"));
+  if (root["sensors"]) model.sensors = r.sensors(root["sensors"]);
+  if (root["release"]) model.release = r.release(root["release"]);
+  if (root["simulation"]) model.simulation = r.simulation(root["simulation"]);
+  if (root["effects"]) {
+    const YAML::Node effects = root["effects"];
+    if (!effects.IsMap()) ctx.fail(effects, "effects", "must be a mapping of effect name to parameters");
+    for (const auto& kv : effects) {
+      const std::string name = kv.first.as<std::string>();
+      const YAML::Node& e = kv.second;
+      if (!e.IsMap()) ctx.fail(e, "effects." + name, "parameters must be a mapping");
+      if (!ctx.boolean_or(e, "enabled", true)) continue;
+      model.effects.push_back(r.effect(name, e, model.geometry));
+    }
+  }
+  try {
+    model.validate();
+  } catch (const std::invalid_argument& x) {
+    const std::string msg = x.what();
+    const auto colon = msg.find(':');
+    const std::string field = msg.substr(0, colon);
+    const YAML::Node at = node_at(root, field);
+    throw InputError(source, YamlContext::line_of(at), field, colon == std::string::npos ? msg : msg.substr(colon + 2));
+  }
+  return model;
+}
+
+rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& options) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), 0, "", "cannot open the rig file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_rig(ss.str(), file.string(), file.parent_path(), options);
+}
+
+}  // namespace rigflex::io

@@ -1,0 +1,47 @@
+#pragma once
+// The designer's check: the rig's first deformation frequency f1 against its
+// highest swing frequency. Rigid identification assumes the frames and rods
+// do not deform at the swing frequencies; that holds when f1 is at least 4x
+// the highest swing frequency, is marginal between 3x and 4x, and fails below.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rig/linearization.hpp"
+#include "rig/rig_model.hpp"
+
+namespace rigflex::rig {
+
+enum class Verdict { rigid_safe, marginal, use_flexible };
+const char* to_string(Verdict v);  // "rigid identification safe", "marginal", "use the flexible algorithm"
+
+enum class Component { fixed_frame, rods, carrying_frame };
+const char* to_string(Component c);  // "fixed_frame", "rods", "carrying_frame"
+
+struct CheckOptions {
+  double target_ratio = 4.0;
+  double marginal_ratio = 3.0;
+  void validate() const;
+};
+
+struct StiffnessAdvice {
+  Component component = Component::fixed_frame;  // the dominant one in the first deformation mode
+  std::optional<double> factor;  // stiffness factor on it that brings the ratio to target
+  double ratio_limit = 0;        // ratio with that component infinitely stiff (bounded search)
+  std::string message;
+};
+
+struct CheckResult {
+  std::vector<double> swing_frequencies_hz;
+  std::optional<double> first_deformation_frequency_hz;  // none when nothing deforms (all rigid)
+  std::optional<double> ratio;
+  Verdict verdict = Verdict::rigid_safe;
+  // Strain energy shares in the first deformation mode (sum 1).
+  double share_fixed_frame = 0, share_rods = 0, share_carrying_frame = 0;
+  std::optional<StiffnessAdvice> advice;
+  Linearization linearization;
+};
+
+CheckResult design_check(const RigModel& model, const CheckOptions& options = {});
+
+}  // namespace rigflex::rig

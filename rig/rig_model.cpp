@@ -1,0 +1,99 @@
+#include "rig/rig_model.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "rig/effect.hpp"
+
+namespace rigflex::rig {
+namespace {
+
+void require(bool ok, const std::string& field, const std::string& message) {
+  if (!ok) throw std::invalid_argument(field + ": " + message);
+}
+
+bool finite(const Vec3& v) { return v.allFinite(); }
+
+// A rod is "far from" its length beyond this fraction: a calibrated rig's
+// joint centres and lengths agree to millimetres, so 5 % is a wrong entry,
+// not a tolerance of the lab.
+constexpr double kReachTolerance = 0.05;
+
+}  // namespace
+
+Eigen::Matrix3d inertia_tensor(const std::array<double, 6>& J) {
+  Eigen::Matrix3d t;
+  t << J[0], J[3], J[4], J[3], J[1], J[5], J[4], J[5], J[2];
+  return t;
+}
+
+std::array<double, 6> inertia_components(const Eigen::Matrix3d& J) {
+  return {J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2)};
+}
+
+void SimulationOptions::validate() const {
+  require(relative_tolerance > 0 && relative_tolerance < 1e-2, "simulation.relative_tolerance",
+          "must lie in (0, 1e-2)");
+  require(position_tolerance > 0, "simulation.position_tolerance", "must be positive");
+  require(max_step_s >= 0, "simulation.max_step", "must be >= 0");
+}
+
+void RigModel::validate() const {
+  const int n = geometry.rod_count();
+  require(n == 3 || n == 4, "geometry.rods", "a rig has 3 or 4 rods (got " + std::to_string(n) + ")");
+  require(std::isfinite(geometry.gravity) && geometry.gravity > 0, "geometry.gravity", "must be positive");
+  require(finite(geometry.reference_point), "geometry.reference_point", "must be finite");
+  for (int i = 0; i < n; ++i) {
+    const RodGeometry& rod = geometry.rods[i];
+    const std::string at = "geometry.rods[" + std::to_string(i + 1) + "]";
+    require(finite(rod.upper) && finite(rod.lower), at, "joint centres must be finite");
+    require(std::isfinite(rod.length) && rod.length > 0, at + ".length", "must be positive");
+    require(std::abs(rod.encoder_axis.norm() - 1.0) < 1e-6, at + ".encoder_axis",
+            "must be a unit vector (|a| = " + std::to_string(rod.encoder_axis.norm()) + ")");
+    require(std::abs(rod.encoder_axis.z()) < 1e-6, at + ".encoder_axis", "must be horizontal (a_z = " +
+                                                                           std::to_string(rod.encoder_axis.z()) + ")");
+    const double reach = (rod.upper - geometry.reference_point - rod.lower).norm();
+    require(std::abs(reach - rod.length) <= kReachTolerance * rod.length, at + ".length",
+            "the rod cannot reach: |A - P - B| = " + std::to_string(reach) + " m at the nominal pose, length " +
+                std::to_string(rod.length) + " m");
+  }
+  require(std::isfinite(body.mass) && body.mass > 0, "body.mass", "must be positive");
+  require(finite(body.cog), "body.cog", "must be finite");
+  require(body.inertia.allFinite() && (body.inertia - body.inertia.transpose()).norm() == 0.0, "body.inertia",
+          "must be finite");
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(body.inertia);
+  const Eigen::Vector3d p = eig.eigenvalues();
+  require(p.minCoeff() > 0, "body.inertia", "the inertia tensor must be positive definite (principal moments " +
+                                                std::to_string(p(0)) + ", " + std::to_string(p(1)) + ", " +
+                                                std::to_string(p(2)) + ")");
+  // A real body's principal moments obey the triangle inequality.
+  require(p(0) + p(1) >= p(2) * (1 - 1e-9), "body.inertia",
+          "principal moments violate the triangle inequality (no mass distribution has them)");
+  require(sensors.sample_rate_hz > 0, "sensors.sample_rate", "must be positive");
+  require(sensors.force_noise_n >= 0 && sensors.angle_noise_rad >= 0 && sensors.force_resolution_n >= 0,
+          "sensors", "noise and resolution must be >= 0");
+  require(sensors.encoder_bits >= 0 && sensors.encoder_bits <= 48, "sensors.encoder.bits", "must lie in [0, 48]");
+  require(release.push_duration_s > 0, "release.push_duration", "must be positive");
+  require(release.push_acceleration[0] >= 0 && release.push_acceleration[1] >= release.push_acceleration[0],
+          "release.push_acceleration", "must be [min, max] with 0 <= min <= max");
+  require(release.push_yaw_acceleration >= 0, "release.push_yaw_acceleration", "must be >= 0");
+  simulation.validate();
+  std::set<std::string> names;
+  for (const auto& e : effects) {
+    require(e != nullptr, "effects", "null effect");
+    require(names.insert(e->name()).second, std::string("effects.") + e->name(), "switched on twice");
+    e->validate(n);
+  }
+}
+
+const Effect* RigModel::effect(const std::string& name) const {
+  for (const auto& e : effects) {
+    if (name == e->name()) return e.get();
+  }
+  return nullptr;
+}
+
+}  // namespace rigflex::rig

@@ -1,0 +1,88 @@
+#pragma once
+// The rig as the user describes it (rig.yaml): the spec's geometry block, the
+// mass properties of what hangs from the rods, sensors, the release protocol
+// and the physical effects switched on. Units SI, conventions of
+// shared/spec/rig-conventions.md.
+#include <Eigen/Core>
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fe/mass_properties.hpp"
+
+namespace rigflex::rig {
+
+using Vec3 = Eigen::Vector3d;
+
+struct RodGeometry {
+  Vec3 upper = Vec3::Zero();         // A_i in G (m)
+  Vec3 lower = Vec3::Zero();         // B_i in frame c (m)
+  double length = 0.0;               // L_i (m), unloaded
+  Vec3 encoder_axis = Vec3::UnitX();  // a_i in G, horizontal unit vector
+};
+
+struct RigGeometry {
+  double gravity = 9.80665;
+  Vec3 reference_point = Vec3::Zero();  // P at the nominal pose, in G
+  std::vector<RodGeometry> rods;
+  int rod_count() const { return static_cast<int>(rods.size()); }
+};
+
+struct SensorOptions {
+  double sample_rate_hz = 500.0;
+  double force_noise_n = 0.0;       // standard deviation of load-cell noise (N)
+  double force_resolution_n = 0.0;  // load-cell quantum (N); 0 = continuous
+  int encoder_bits = 0;             // counts per turn 2^bits; 0 = continuous
+  double angle_noise_rad = 0.0;     // standard deviation of encoder noise (rad)
+};
+
+// Given initial conditions: the operator holds the body displaced along the
+// swing coordinates (the other coordinates settle statically) and lets go.
+struct InitialCondition {
+  double x = 0.0, y = 0.0;  // m, horizontal displacement of P from equilibrium
+  double yaw = 0.0;         // rad, about the vertical
+  Vec3 velocity = Vec3::Zero();          // m/s of P, in G
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, in G
+};
+
+// A human push: a raised-cosine force pulse on the body at its CoG, of random
+// horizontal direction and size, plus a random yaw moment, after which the
+// free swing is recorded.
+struct ReleaseOptions {
+  double push_duration_s = 1.0;
+  std::array<double, 2> push_acceleration{0.15, 0.45};  // m/s^2: peak force / mass, drawn uniformly
+  double push_yaw_acceleration = 0.3;                   // rad/s^2: peak moment / Jzz, drawn in [-a, a]
+  std::vector<InitialCondition> initial;                // non-empty: use these instead of pushes
+};
+
+struct SimulationOptions {
+  double relative_tolerance = 1e-8;
+  double position_tolerance = 1e-10;  // m (rad for angles), absolute
+  double max_step_s = 0.0;            // 0: no limit
+  void validate() const;              // std::invalid_argument
+};
+
+class Effect;
+
+struct RigModel {
+  std::string name;
+  RigGeometry geometry;
+  // Mass properties of what hangs from the rods: carrying frame + body (or
+  // the carrying frame alone for a tare), about the CoG, in frame c.
+  fe::MassProperties body;
+  SensorOptions sensors;
+  ReleaseOptions release;
+  SimulationOptions simulation;
+  std::vector<std::shared_ptr<const Effect>> effects;
+
+  // Throws std::invalid_argument naming the offending field ("rods[2].encoder_axis").
+  void validate() const;
+  const Effect* effect(const std::string& name) const;  // nullptr if not switched on
+};
+
+// Inertia tensor from the spec's [Jxx, Jyy, Jzz, Jxy, Jxz, Jyz] (negative-integral products).
+Eigen::Matrix3d inertia_tensor(const std::array<double, 6>& J);
+std::array<double, 6> inertia_components(const Eigen::Matrix3d& J);
+
+}  // namespace rigflex::rig

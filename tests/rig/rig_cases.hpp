@@ -1,0 +1,35 @@
+#pragma once
+// Small rigs with closed-form answers, shared by the rig tests.
+#include <cmath>
+#include <numbers>
+
+#include "rig/rig_model.hpp"
+
+namespace rigflex::test {
+
+// n equal vertical rods of length L at radius R around P (upper joints above
+// the lower ones), carrying a uniform disk of mass m and radius Rd whose CoG
+// lies `drop` below the joint plane; g = 9.81 as in
+// shared/verification/pendulum_closed_form.yaml.
+inline rig::RigModel multifilar_rig(int n = 3, double R = 0.4, double L = 1.0, double m = 100.0, double Rd = 0.5,
+                                    double drop = 0.0) {
+  rig::RigModel model;
+  model.name = "multifilar";
+  model.geometry.gravity = 9.81;
+  model.geometry.reference_point = rig::Vec3(0, 0, 0);
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2.0 * std::numbers::pi * i / n + 0.3;
+    rig::RodGeometry rod;
+    rod.lower = rig::Vec3(R * std::cos(phi), R * std::sin(phi), 0.0);
+    rod.upper = rod.lower + rig::Vec3(0, 0, L);
+    rod.length = L;
+    rod.encoder_axis = rig::Vec3(std::cos(phi), std::sin(phi), 0.0);
+    model.geometry.rods.push_back(rod);
+  }
+  model.body.mass = m;
+  model.body.cog = rig::Vec3(0, 0, -drop);
+  model.body.inertia = Eigen::Vector3d(m * Rd * Rd / 4, m * Rd * Rd / 4, m * Rd * Rd / 2).asDiagonal();
+  return model;
+}
+
+}  // namespace rigflex::test
