@@ -14,6 +14,8 @@
 #include <cmath>
 #include <memory>
 #include <numbers>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "rig/effects.hpp"
@@ -150,6 +152,14 @@ std::vector<Vec3> lower_joints(const rig::RigModel& model, const rig::Configurat
   return B;
 }
 
+// Measured values, for the test report (--gtest_output=xml).
+void record(const std::string& key, const std::vector<double>& values) {
+  std::ostringstream os;
+  os.precision(7);
+  for (double v : values) os << v << ' ';
+  ::testing::Test::RecordProperty(key, os.str());
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------------------
@@ -180,6 +190,7 @@ TEST(RigEffects, JointFrictionCoulombDecaysLinearlyViscousExponentially) {
     spread_undamped = std::max(spread_undamped, std::abs(p.amplitude / undamped[0].amplitude - 1));
   }
   EXPECT_LT(spread_undamped, 1e-5);
+  record("undamped_peak_spread", {spread_undamped});
 
   // Coulomb only.
   rig::JointFrictionParameters coulomb;
@@ -195,14 +206,19 @@ TEST(RigEffects, JointFrictionCoulombDecaysLinearlyViscousExponentially) {
   }
   const double drop_expected = 4.0 * n * coulomb.coulomb / (W * l);
   // Constant decrement; the regularization (eps = 1e-3 rad/s against peak
-  // rates of 0.05-0.15 rad/s) and sin(theta) ~ theta (<0.05 %) perturb it
-  // by well below 2 %. The ratio of successive peaks falls steadily instead.
-  EXPECT_LT(max_relative_spread(drop), 0.02);
-  EXPECT_NEAR(mean_of(drop), drop_expected, 0.02 * drop_expected);
+  // rates of 0.04-0.15 rad/s: ~ (eps / rate)^2 < 1e-3) and sin(theta) ~
+  // theta (theta^2 / 6 < 5e-4) perturb it by well below 0.5 %. The ratio of
+  // successive peaks falls steadily instead (0.88 to 0.69).
+  EXPECT_LT(max_relative_spread(drop), 0.005);
+  EXPECT_NEAR(mean_of(drop), drop_expected, 0.005 * drop_expected);
   EXPECT_GT(max_relative_spread(ratio), 0.05);
   const DecayFits fc = fit_decay(pc);
   EXPECT_LT(fc.linear_rms, 0.1 * fc.exponential_rms) << "linear " << fc.linear_rms << ", exponential "
                                                     << fc.exponential_rms;
+  record("coulomb_first_last_peak", {pc.front().amplitude, pc.back().amplitude});
+  record("coulomb_drop_mean_expected_spread", {mean_of(drop), drop_expected, max_relative_spread(drop)});
+  record("coulomb_ratio_spread", {max_relative_spread(ratio)});
+  record("coulomb_rms_linear_exponential", {fc.linear_rms, fc.exponential_rms});
 
   // Viscous only.
   rig::JointFrictionParameters viscous;
@@ -220,13 +236,17 @@ TEST(RigEffects, JointFrictionCoulombDecaysLinearlyViscousExponentially) {
   const double omega_d = std::sqrt(kG / l - sigma * sigma);
   const double ratio_expected = std::exp(-sigma * kPi / omega_d);
   // A linear oscillator: constant ratio to the peak-fit precision; the
-  // pendulum's sin nonlinearity at 0.05 rad changes it by < 1e-3.
-  EXPECT_LT(max_relative_spread(ratio_v), 2e-3);
-  EXPECT_NEAR(mean_of(ratio_v), ratio_expected, 2e-3);
+  // pendulum's sin nonlinearity at 0.05 rad moves omega by theta^2 / 16 =
+  // 1.6e-4 and the ratio by ~3e-5: 5e-4 allowed.
+  EXPECT_LT(max_relative_spread(ratio_v), 5e-4);
+  EXPECT_NEAR(mean_of(ratio_v), ratio_expected, 5e-4);
   EXPECT_GT(max_relative_spread(drop_v), 0.2);  // the decrement shrinks with the amplitude
   const DecayFits fv = fit_decay(pv);
   EXPECT_LT(fv.exponential_rms, 0.1 * fv.linear_rms) << "linear " << fv.linear_rms << ", exponential "
                                                      << fv.exponential_rms;
+  record("viscous_ratio_mean_expected_spread", {mean_of(ratio_v), ratio_expected, max_relative_spread(ratio_v)});
+  record("viscous_drop_spread", {max_relative_spread(drop_v)});
+  record("viscous_rms_linear_exponential", {fv.linear_rms, fv.exponential_rms});
 }
 
 // ---------------------------------------------------------------------------
@@ -272,9 +292,13 @@ TEST(RigEffects, AirDragDecaysLargeSwingsFasterThanSmallOnes) {
   EXPECT_LT(ratio, 5.5);
   // 1 / theta grows by the same c at both amplitudes; the energy argument
   // holds to first order in the decay per half cycle (<= 4 %, its second
-  // order ~ 0.1 %) and in theta^2 (~1 %).
-  for (double c : c_big) EXPECT_NEAR(c, c_expected, 0.03 * c_expected);
-  for (double c : c_small) EXPECT_NEAR(c, c_expected, 0.03 * c_expected);
+  // order ~ 0.1 %) and in theta^2 (theta^2 / 8 ~ 0.1 %): 1 % allowed.
+  for (double c : c_big) EXPECT_NEAR(c, c_expected, 0.01 * c_expected);
+  for (double c : c_small) EXPECT_NEAR(c, c_expected, 0.01 * c_expected);
+  record("drag_c_big", c_big);
+  record("drag_c_small", c_small);
+  record("drag_c_expected", {c_expected});
+  record("drag_relative_decay_big_small_ratio", {rel_big[0], rel_small[0], ratio});
 
   // Zero translational drag (only a rotational coefficient, which a pure
   // sway does not excite): no decay, as without the effect.
@@ -285,6 +309,11 @@ TEST(RigEffects, AirDragDecaysLargeSwingsFasterThanSmallOnes) {
   const std::vector<Peak> none = sway_peaks(m0, 0.10, duration);
   ASSERT_GE(none.size(), 4u);
   for (const Peak& p : none) EXPECT_NEAR(p.amplitude / none[0].amplitude, 1.0, 1e-5);
+  {
+    double worst = 0;
+    for (const Peak& p : none) worst = std::max(worst, std::abs(p.amplitude / none[0].amplitude - 1));
+    record("drag_none_spread", {worst});
+  }
 }
 
 // ---------------------------------------------------------------------------
@@ -336,6 +365,8 @@ TEST(RigEffects, RodComplianceAddsTheBounceModeOfTheRodStiffness) {
   int deformation = 0;
   for (const auto& md : lin.modes) deformation += md.kind == rig::RigModeKind::deformation;
   EXPECT_EQ(deformation, 3);  // bounce and the two tilts
+  record("sink_measured_expected", {c.r.z(), -m * kG / ksum});
+  record("bounce_hz_measured_expected_share", {bounce.frequency_hz, f_expected, bounce.shape(2) * Ms(2)});
 }
 
 // ---------------------------------------------------------------------------
@@ -349,7 +380,7 @@ TEST(RigEffects, RodMassActsAsAThirdAtTheLowerJointAndHalfItsWeight) {
   //   omega^2 = g (m + n mr / 2) / (l (m + n mr / 3))     -> up 1.18 % here
   // (the rod alone is a compound pendulum of length 2L/3, faster than the
   // body's). Yaw psi (rods lean by R psi / l):
-  //   omega^2 = g R^2 (m + n mr / 2) / (l (J + n mr R^2 / 3))  -> down 3.08 %
+  //   omega^2 = g R^2 (m + n mr / 2) / (l (J + n mr R^2 / 3))  -> down 3.06 %
   // here, because the disk's J = m Rd^2 / 2 is small against m R^2 at R = 0.6 m.
   const int n = 3;
   const double m = 100.0, L = 1.0, R = 0.6, Rd = 0.5, mr = 5.0;
@@ -386,6 +417,10 @@ TEST(RigEffects, RodMassActsAsAThirdAtTheLowerJointAndHalfItsWeight) {
     EXPECT_NEAR(s1.force(i) - s0.force(i), rod_weight, 1e-9 * m * kG);
   }
   EXPECT_NEAR(rig1.suspended_weight() - rig0.suspended_weight(), n * 0.5 * rod_weight, 1e-9 * m * kG);
+  record("sway_ratio_measured_expected",
+         {swing_frequency_along(lin1, 0) / swing_frequency_along(lin0, 0), sway_ratio});
+  record("yaw_ratio_measured_expected", {swing_frequency_along(lin1, 5) / swing_frequency_along(lin0, 5), yaw_ratio});
+  record("rod1_spring_and_cell_increase_N", {k1.rods[0].force - k0.rods[0].force, s1.force(0) - s0.force(0)});
 }
 
 // ---------------------------------------------------------------------------
@@ -427,11 +462,16 @@ TEST(RigEffects, EncoderOffsetShiftsTheAnglesByExactlyTheOffset) {
   ASSERT_EQ(h0.t.size(), h1.t.size());
   EXPECT_GT(h0.alpha.col(0).maxCoeff() - h0.alpha.col(0).minCoeff(), 1e-3);  // it moves
   EXPECT_GT(h0.beta.col(0).maxCoeff() - h0.beta.col(0).minCoeff(), 1e-3);
+  double worst = 0;
   for (int i = 0; i < 3; ++i) {
     const double scale = 1e-12 * std::max({h1.alpha.col(i).cwiseAbs().maxCoeff(), h1.beta.col(i).cwiseAbs().maxCoeff()});
-    EXPECT_LE((h1.alpha.col(i).array() - h0.alpha.col(i).array() - da[i]).abs().maxCoeff(), scale);
-    EXPECT_LE((h1.beta.col(i).array() - h0.beta.col(i).array() - db[i]).abs().maxCoeff(), scale);
+    const double ea = (h1.alpha.col(i).array() - h0.alpha.col(i).array() - da[i]).abs().maxCoeff();
+    const double eb = (h1.beta.col(i).array() - h0.beta.col(i).array() - db[i]).abs().maxCoeff();
+    EXPECT_LE(ea, scale);
+    EXPECT_LE(eb, scale);
+    worst = std::max({worst, ea, eb});
   }
+  record("max_angle_error_rad", {worst});
   EXPECT_EQ(h1.force, h0.force);  // the load cells do not see it
 }
 
@@ -446,10 +486,14 @@ TEST(RigEffects, LoadCellGainScalesAndOffsetsTheForcesExactly) {
   const rig::VirtualHistory h1 = measured_swing(cal);
   ASSERT_EQ(h0.t.size(), h1.t.size());
   EXPECT_GT(h0.force.col(0).maxCoeff() - h0.force.col(0).minCoeff(), 1.0);  // the forces swing (N)
+  double worst = 0;
   for (int i = 0; i < 3; ++i) {
     const Eigen::ArrayXd expected = gain[i] * h0.force.col(i).array() + offset[i];
-    EXPECT_LE((h1.force.col(i).array() - expected).abs().maxCoeff(), 1e-12 * expected.abs().maxCoeff());
+    const double err = (h1.force.col(i).array() - expected).abs().maxCoeff() / expected.abs().maxCoeff();
+    EXPECT_LE(err, 1e-12);
+    worst = std::max(worst, err);
   }
+  record("max_relative_force_error", {worst});
   EXPECT_EQ(h1.alpha, h0.alpha);  // the encoders do not see it
   EXPECT_EQ(h1.beta, h0.beta);
 }
@@ -474,64 +518,95 @@ TEST(RigEffects, RodLengthErrorLowersTheBodyByTheExtraLength) {
   EXPECT_LT(c1.q.angularDistance(c0.q), 1e-6 * d);
 
   // Rod 1 alone longer by d: its lower joint drops by d, the other two stay,
-  // so the body tilts about the line B2 B3 by d / (1.5 R) (the distance of
-  // B1 from that line) and P drops d / 3. The rods stay vertical to first
-  // order; the second-order error is ~ d^2 / R = 4e-5 m here, 1 % of d.
+  // so the body tilts about the line B2 B3 by theta = d / (1.5 R) (the
+  // distance of B1 from that line) and P (the joints' centroid) drops d / 3.
+  // The tilt moves the joints sideways by ~ theta^2 R = 2e-5 m, which changes
+  // a rod's vertical reach by (2e-5)^2 / 2L = 2e-10 m: the heights hold to
+  // 1e-6 d; the angle to sin(theta) ~ theta, theta^2 / 6 = 7e-6 (1e-4 allowed).
   rig::RigModel one = base;
   one.effects.push_back(std::make_shared<rig::RodLengthError>(std::vector<double>{d, 0.0, 0.0}));
   const rig::Configuration c2 = equilibrium_of(one);
   const std::vector<Vec3> B0 = lower_joints(base, c0), B2 = lower_joints(one, c2);
-  EXPECT_NEAR(B2[0].z() - B0[0].z(), -d, 0.01 * d);
-  EXPECT_NEAR(B2[1].z() - B0[1].z(), 0.0, 0.01 * d);
-  EXPECT_NEAR(B2[2].z() - B0[2].z(), 0.0, 0.01 * d);
-  EXPECT_NEAR(c2.r.z() - c0.r.z(), -d / 3, 0.01 * d);
+  EXPECT_NEAR(B2[0].z() - B0[0].z(), -d, 1e-6 * d);
+  EXPECT_NEAR(B2[1].z() - B0[1].z(), 0.0, 1e-6 * d);
+  EXPECT_NEAR(B2[2].z() - B0[2].z(), 0.0, 1e-6 * d);
+  EXPECT_NEAR(c2.r.z() - c0.r.z(), -d / 3, 1e-6 * d);
   // The tilt: a rotation by +theta about e = b1_hat x z raises b1
   // ((b1_hat x z) x b1 = |b1| z), so lowering B1 is -d / (1.5 R) about e.
   const Eigen::AngleAxisd tilt(c2.q * c0.q.conjugate());
   const Vec3 e = base.geometry.rods[0].lower.normalized().cross(Vec3::UnitZ());
-  EXPECT_NEAR(tilt.angle() * tilt.axis().dot(e), -d / (1.5 * 0.4), 0.01 * d / (1.5 * 0.4));
+  EXPECT_NEAR(tilt.angle() * tilt.axis().dot(e), -d / (1.5 * 0.4), 1e-4 * d / (1.5 * 0.4));
+  record("all_longer_dz_error_m", {c1.r.z() - c0.r.z() + d});
+  record("one_longer_dB1_dB2_dB3_dP_m", {B2[0].z() - B0[0].z(), B2[1].z() - B0[1].z(), B2[2].z() - B0[2].z(),
+                                         c2.r.z() - c0.r.z()});
+  record("one_longer_tilt_measured_expected", {tilt.angle() * tilt.axis().dot(e), -d / (1.5 * 0.4)});
 }
 
-TEST(RigEffects, JointPositionErrorShiftsTheBodyAsTheJointsMove) {
-  GTEST_SKIP() << "known defect (issue 4 open): static_equilibrium does not converge when the equilibrium "
-                  "lies centimetres from the nominal pose (moved joints, soft fixed frame); see docs/rig.md";
-  // Rigid vertical rods of unchanged length hang straight below their upper
-  // joints: moving every upper joint by e (G) moves the body by e; moving
-  // every lower joint by e (frame c) moves the body by -e (the joints must
-  // stay under the same upper joints). Both exact (rods vertical again).
+namespace {
+
+// Rigid vertical rods of unchanged length hang straight below their upper
+// joints: moving every upper joint by e (G) moves the body by e; moving every
+// lower joint by e (frame c) moves the body by -e (the joints must stay
+// under the same upper joints). The upper case is exact; in the lower case
+// the CoG is no longer under the joints' centroid, the rods share the load
+// unequally (by 2 |e_h| / R) and their 2.8e-6 m static stretch differs
+// accordingly: a tilt of ~ 2.8e-6 (2 |e_h| / R) / R, 4e-7 rad for
+// |e_h| = 1.2 cm, 1e-8 rad for 0.25 mm; 1e-6 rad allowed.
+void expect_body_follows_the_joints(const Vec3& e) {
   const rig::RigModel base = test::multifilar_rig(3, 0.4, 1.0, 100.0, 0.5, 0.0);
   const rig::Configuration c0 = equilibrium_of(base);
-  const Vec3 e(0.01, -0.006, 0.003);
-  {
-    rig::RigModel up = base;
-    up.effects.push_back(std::make_shared<rig::JointPositionError>(std::vector<Vec3>(3, e), std::vector<Vec3>(3, Vec3::Zero())));
-    const rig::Configuration c = equilibrium_of(up);
-    EXPECT_LT((c.r - c0.r - e).norm(), 1e-6 * e.norm());
-    EXPECT_LT(c.q.angularDistance(c0.q), 1e-6 * e.norm());
-  }
-  {
-    rig::RigModel low = base;
-    low.effects.push_back(std::make_shared<rig::JointPositionError>(std::vector<Vec3>(3, Vec3::Zero()), std::vector<Vec3>(3, e)));
-    const rig::Configuration c = equilibrium_of(low);
-    EXPECT_LT((c.r - c0.r + e).norm(), 1e-6 * e.norm());
-    EXPECT_LT(c.q.angularDistance(c0.q), 1e-6 * e.norm());
-  }
+  rig::RigModel up = base;
+  up.effects.push_back(
+      std::make_shared<rig::JointPositionError>(std::vector<Vec3>(3, e), std::vector<Vec3>(3, Vec3::Zero())));
+  const rig::Configuration cu = equilibrium_of(up);
+  EXPECT_LT((cu.r - c0.r - e).norm(), 1e-6 * e.norm()) << "body moved by " << (cu.r - c0.r).transpose();
+  EXPECT_LT(cu.q.angularDistance(c0.q), 1e-9);
+  rig::RigModel low = base;
+  low.effects.push_back(
+      std::make_shared<rig::JointPositionError>(std::vector<Vec3>(3, Vec3::Zero()), std::vector<Vec3>(3, e)));
+  const rig::Configuration cl = equilibrium_of(low);
+  EXPECT_LT((cl.r - c0.r + e).norm(), 1e-6 * e.norm()) << "body moved by " << (cl.r - c0.r).transpose();
+  EXPECT_LT(cl.q.angularDistance(c0.q), 1e-6);
+  record("upper_position_error_tilt", {(cu.r - c0.r - e).norm(), cu.q.angularDistance(c0.q)});
+  record("lower_position_error_tilt", {(cl.r - c0.r + e).norm(), cl.q.angularDistance(c0.q)});
+}
+
+}  // namespace
+
+TEST(RigEffects, JointPositionErrorMovesAndTiltsTheBodyWithTheJoints) {
+  // Sub-millimetre horizontal errors (with a 3 mm vertical one): see above.
+  expect_body_follows_the_joints(Vec3(2.0e-4, -1.5e-4, 3.0e-3));
+
   // Upper joint of rod 1 raised by h: B1 rises h (B2, B3 stay), the body
   // tilts the other way from a longer rod: +h / (1.5 R) about b1_hat x z.
-  // First order, error ~ h^2 / R (1 %).
+  // Tolerances as for the rod length error of the same size.
   const double h = 4e-3;
+  const rig::RigModel base = test::multifilar_rig(3, 0.4, 1.0, 100.0, 0.5, 0.0);
+  const rig::Configuration c0 = equilibrium_of(base);
   rig::RigModel raised = base;
   std::vector<Vec3> upper(3, Vec3::Zero());
   upper[0] = Vec3(0, 0, h);
   raised.effects.push_back(std::make_shared<rig::JointPositionError>(upper, std::vector<Vec3>(3, Vec3::Zero())));
   const rig::Configuration c3 = equilibrium_of(raised);
   const std::vector<Vec3> B0 = lower_joints(base, c0), B3 = lower_joints(raised, c3);
-  EXPECT_NEAR(B3[0].z() - B0[0].z(), h, 0.01 * h);
-  EXPECT_NEAR(B3[1].z() - B0[1].z(), 0.0, 0.01 * h);
-  EXPECT_NEAR(B3[2].z() - B0[2].z(), 0.0, 0.01 * h);
+  EXPECT_NEAR(B3[0].z() - B0[0].z(), h, 1e-6 * h);
+  EXPECT_NEAR(B3[1].z() - B0[1].z(), 0.0, 1e-6 * h);
+  EXPECT_NEAR(B3[2].z() - B0[2].z(), 0.0, 1e-6 * h);
+  EXPECT_NEAR(c3.r.z() - c0.r.z(), h / 3, 1e-6 * h);
   const Eigen::AngleAxisd tilt(c3.q * c0.q.conjugate());
   const Vec3 axis = base.geometry.rods[0].lower.normalized().cross(Vec3::UnitZ());
-  EXPECT_NEAR(tilt.angle() * tilt.axis().dot(axis), h / (1.5 * 0.4), 0.01 * h / (1.5 * 0.4));
+  EXPECT_NEAR(tilt.angle() * tilt.axis().dot(axis), h / (1.5 * 0.4), 1e-4 * h / (1.5 * 0.4));
+  record("raised_dB1_dB2_dB3_dP_m", {B3[0].z() - B0[0].z(), B3[1].z() - B0[1].z(), B3[2].z() - B0[2].z(),
+                                     c3.r.z() - c0.r.z()});
+  record("raised_tilt_measured_expected", {tilt.angle() * tilt.axis().dot(axis), h / (1.5 * 0.4)});
+}
+
+TEST(RigEffects, JointPositionErrorOfACentimetreMovesTheBodyWithTheJoints) {
+  GTEST_SKIP() << "library defect (docs/rig.md, known limits of issue 4): rig::static_equilibrium from the "
+                  "nominal pose does not converge once the joints move >= 1 mm horizontally (e = 1 cm: "
+                  "residual 9.6e-3 of the weight after 60 Newton steps, body moved 0.68 mm instead of 10 mm); "
+                  "started from the exact pose it converges to it";
+  expect_body_follows_the_joints(Vec3(0.01, -0.006, 0.003));
 }
 
 // ---------------------------------------------------------------------------
@@ -539,8 +614,6 @@ TEST(RigEffects, JointPositionErrorShiftsTheBodyAsTheJointsMove) {
 // ---------------------------------------------------------------------------
 
 TEST(RigEffects, FixedFrameFlexibilitySagsAndSlowsTheSway) {
-  GTEST_SKIP() << "known defect (issue 4 open): static_equilibrium does not converge when the equilibrium "
-                  "lies centimetres from the nominal pose (moved joints, soft fixed frame); see docs/rig.md";
   // Each upper joint on its own isotropic spring kf to ground with mass mf.
   // Statics: each spring carries W / n: the body hangs W / (n kf) lower.
   // Sway along x (rods vertical, forces in the joint plane through P: no
@@ -573,7 +646,10 @@ TEST(RigEffects, FixedFrameFlexibilitySagsAndSlowsTheSway) {
   const double f_expected = std::sqrt(lam) / (2 * kPi);
   const double f_rigid = swing_frequency_along(lin0, 0), f_flex = swing_frequency_along(lin1, 0);
   EXPECT_NEAR(f_flex, f_expected, 1e-5 * f_expected);
-  EXPECT_LT(f_flex, f_rigid * (1 - 0.01));  // 1.6 % slower: the frame adds its compliance in series
+  // 0.81 % slower: the frame's n kf = 6e4 N/m in series with the pendulum's W / l = 981 N/m.
+  EXPECT_LT(f_flex, f_rigid * (1 - 0.005));
+  record("sag_measured_expected", {c1.r.z() - c0.r.z(), -W / (n * kf)});
+  record("sway_hz_rigid_flexible_expected", {f_rigid, f_flex, f_expected});
 }
 
 TEST(RigEffects, CarryingFrameModeIsStiffenedByThePendulum) {
@@ -601,4 +677,5 @@ TEST(RigEffects, CarryingFrameModeIsStiffenedByThePendulum) {
   const double f_expected = std::sqrt(cf.omega2(0) + W * s * s / l) / (2 * kPi);
   EXPECT_NEAR(mode.frequency_hz, f_expected, 1e-5 * f_expected);
   EXPECT_GT(mode.frequency_hz, f_frame * 1.004);  // +0.5 %: measurably above the free frame's 5 Hz
+  record("mode_hz_measured_expected", {mode.frequency_hz, f_expected});
 }
