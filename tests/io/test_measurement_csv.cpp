@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "support/temp_files.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
 
@@ -26,35 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 using io::TimeHistory;
 
-// A fresh folder per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("rigflex-measurement-" + std::string(info->test_suite_name()) + "-" +
-                                         info->name() + "-" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
+using test::read_text;
+using test::write_text;
 
 std::set<std::string> entries(const fs::path& dir) {
   std::set<std::string> out;
@@ -219,7 +193,7 @@ void expect_same(const TimeHistory& a, const TimeHistory& b) {
 // ---------------------------------------------------------------- writing and reading back
 
 TEST(TimeHistoryCsv, RoundTripIsBitExact) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   for (const int rods : {4, 3}) {
     const TimeHistory h = awkward_history(rods, 40);
     const fs::path file = dir.path() / ("h" + std::to_string(rods) + ".csv");
@@ -431,7 +405,7 @@ TEST(TimeHistoryCsvErrors, CommentNotUtf8) {
 }
 
 TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   const fs::path file = dir.path() / "run 7.csv";
   Table table = sample_table(3, 3);
   table.at(1, "alpha2") = "n/a";
@@ -457,7 +431,7 @@ TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
 // ---------------------------------------------------------------- the writer refuses, and writes nothing
 
 TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   const fs::path file = dir.path() / "sub" / "h1.csv";
   const TimeHistory good = awkward_history(4, 5);
   const std::vector<std::pair<std::string, std::function<void(TimeHistory&)>>> breakages = {
@@ -500,7 +474,7 @@ TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
 // ---------------------------------------------------------------- sets of time histories
 
 TEST(MeasurementSet, NaturalOrderAndOnlyCsvFiles) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   const std::vector<std::string> names = {"h10.csv", "h2.csv", "h1.csv", "h3.CSV", "h02b.csv", "h9.csv"};
   for (size_t i = 0; i < names.size(); ++i) {
     Table table = sample_table(4, 3 + static_cast<int>(i));
@@ -523,7 +497,7 @@ TEST(MeasurementSet, NaturalOrderAndOnlyCsvFiles) {
 }
 
 TEST(MeasurementSet, RodCountMismatch) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   write_text(dir.path() / "h1.csv", sample_table(4, 3).text());
   write_text(dir.path() / "h2.csv", sample_table(4, 3).text());
   const Table three = sample_table(3, 3);
@@ -548,7 +522,7 @@ TEST(MeasurementSet, RodCountMismatch) {
 }
 
 TEST(MeasurementSet, EmptyOrMissingFolder) {
-  TempDir dir;
+  test::TempDir dir("rigflex-measurement");
   write_text(dir.path() / "readme.txt", "");
   const std::vector<std::pair<fs::path, std::string>> cases = {{dir.path(), "no .csv files"},
                                                                {dir.path() / "absent", "no such folder"},

@@ -17,6 +17,7 @@
 #include <random>
 #include <set>
 
+#include "support/temp_files.hpp"
 #include "io/input_error.hpp"
 #include "io/json_fields.hpp"
 #include "io/matrix_market.hpp"
@@ -31,35 +32,8 @@ using reduction::ReducedFrame;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A fresh folder per test, removed afterwards.
-class TempDir {
- public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() / ("rigflex-export-" + std::string(info->test_suite_name()) + "-" +
-                                         info->name() + "-" + std::to_string(::getpid()));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
+using test::read_text;
+using test::write_text;
 
 std::set<std::string> entries(const fs::path& dir) {
   std::set<std::string> out;
@@ -327,7 +301,7 @@ TEST(MatrixMarket, RoundTripIsBitExact) {
 }
 
 TEST(MatrixMarket, WriterRefusesNaNAndInfinity) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   for (const double bad : {kNaN, kInf, -kInf}) {
     Eigen::MatrixXd A = Eigen::MatrixXd::Ones(3, 4);
     A(1, 2) = bad;
@@ -397,7 +371,7 @@ TEST(MatrixMarket, MalformedFilesNameTheLine) {
 }
 
 TEST(MatrixMarket, ReadsTheFileItWrote) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const Eigen::MatrixXd A = Awkward().matrix(4, 3);
   io::write_matrix_market(dir.path() / "A.mtx", A, "A");
   expect_same(A, io::read_matrix_market(dir.path() / "A.mtx"), "A");
@@ -439,7 +413,7 @@ TEST(JsonFields, NamesTheLineAndPathOfEveryValue) {
 // ---------------------------------------------------------------- reduced frame
 
 TEST(ReducedExport, RoundTripIsBitExact) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const ReducedFrame r = awkward_frame();
   io::write_reduced_frame(dir.path(), r);
   EXPECT_EQ(entries(dir.path()), kExportFiles);
@@ -455,7 +429,7 @@ TEST(ReducedExport, RoundTripIsBitExact) {
 }
 
 TEST(ReducedExport, RoundTripOfAGuyanFrameWithoutModes) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const ReducedFrame r = plain_frame();
   io::write_reduced_frame(dir.path(), r);
   expect_same(r, io::read_reduced_frame(dir.path()));
@@ -465,7 +439,7 @@ TEST(ReducedExport, RoundTripOfAGuyanFrameWithoutModes) {
 }
 
 TEST(ReducedExport, JsonHoldsTheDocumentedRecords) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const ReducedFrame r = awkward_frame();
   io::write_reduced_frame(dir.path(), r);
   const auto j = nlohmann::json::parse(read_text(dir.path() / "reduced.json"));
@@ -491,7 +465,7 @@ TEST(ReducedExport, JsonHoldsTheDocumentedRecords) {
 }
 
 TEST(ReducedExport, MatFileReadsBackBitExact) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const ReducedFrame r = awkward_frame();
   io::write_reduced_frame(dir.path(), r);
   EXPECT_EQ(read_text(dir.path() / "reduced.mat").rfind("MATLAB 5.0 MAT-file", 0), 0u);
@@ -535,7 +509,7 @@ io::InputError mat_error(const fs::path& file) {
 }
 
 TEST(ReducedExport, MatReaderRefusesWhatIsNotAReducedFrame) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const fs::path file = dir.path() / "x.mat";
   write_text(file, "not a MAT file at all, but long enough to have a header of 128 bytes........................"
                    ".......................................................................................");
@@ -571,7 +545,7 @@ TEST(ReducedExport, MatReaderRefusesWhatIsNotAReducedFrame) {
 }
 
 TEST(ReducedExport, WriterRefusesWhatItCannotWriteExactly) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const fs::path out = dir.path() / "out";
   auto refusal = [&](auto change) -> std::string {
     ReducedFrame r = awkward_frame();
@@ -603,7 +577,7 @@ TEST(ReducedExport, WriterRefusesWhatItCannotWriteExactly) {
 }
 
 TEST(ReducedExport, AFailingBatchLeavesNoFileBehind) {
-  TempDir dir;
+  test::TempDir dir("rigflex-export");
   const fs::path out = dir.path() / "out";
   {
     io::FileBatch batch;
@@ -655,7 +629,7 @@ class ReducedImport : public ::testing::Test {
     return j.dump(2) + "\n";
   }
 
-  TempDir dir_;
+  test::TempDir dir_{"rigflex-export"};
   std::string json_;
 };
 

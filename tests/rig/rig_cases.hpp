@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "rig/linearization.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::test {
@@ -30,6 +31,17 @@ inline rig::RigModel multifilar_rig(int n = 3, double R = 0.4, double L = 1.0, d
   model.body.cog = rig::Vec3(0, 0, -drop);
   model.body.inertia = Eigen::Vector3d(m * Rd * Rd / 4, m * Rd * Rd / 4, m * Rd * Rd / 2).asDiagonal();
   return model;
+}
+
+// The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
+inline double swing_frequency_along(const rig::Linearization& lin, int j) {
+  double best = -1, f = 0;
+  for (const auto& m : lin.modes) {
+    if (m.kind != rig::RigModeKind::swing) continue;
+    const double share = m.shape(j) * (lin.M * m.shape)(j);
+    if (share > best) best = share, f = m.frequency_hz;
+  }
+  return f;
 }
 
 }  // namespace rigflex::test

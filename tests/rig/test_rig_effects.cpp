@@ -115,17 +115,6 @@ double mean_of(const std::vector<double>& v) {
   return m;
 }
 
-// The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
-double swing_frequency_along(const rig::Linearization& lin, int j) {
-  double best = -1, f = 0;
-  for (const auto& m : lin.modes) {
-    if (m.kind != rig::RigModeKind::swing) continue;
-    const double share = m.shape(j) * (lin.M * m.shape)(j);
-    if (share > best) best = share, f = m.frequency_hz;
-  }
-  return f;
-}
-
 // The mode (any kind) in which coordinate j has the largest kinetic energy share.
 const rig::RigMode& mode_along(const rig::Linearization& lin, int j) {
   const rig::RigMode* best = &lin.modes.front();
@@ -397,10 +386,10 @@ TEST(RigEffects, RodMassActsAsAThirdAtTheLowerJointAndHalfItsWeight) {
   // 2.8e-6 m (the 300 Hz springs scale with the moving mass, the load with
   // the weight): 6e-8 of l. The ratios are exact up to that and the
   // linearization's ~1e-6.
-  EXPECT_NEAR(swing_frequency_along(lin1, 0) / swing_frequency_along(lin0, 0), sway_ratio, 1e-5);
-  EXPECT_NEAR(swing_frequency_along(lin1, 5) / swing_frequency_along(lin0, 5), yaw_ratio, 1e-5);
-  EXPECT_GT(swing_frequency_along(lin1, 0), swing_frequency_along(lin0, 0));
-  EXPECT_LT(swing_frequency_along(lin1, 5), swing_frequency_along(lin0, 5));
+  EXPECT_NEAR(test::swing_frequency_along(lin1, 0) / test::swing_frequency_along(lin0, 0), sway_ratio, 1e-5);
+  EXPECT_NEAR(test::swing_frequency_along(lin1, 5) / test::swing_frequency_along(lin0, 5), yaw_ratio, 1e-5);
+  EXPECT_GT(test::swing_frequency_along(lin1, 0), test::swing_frequency_along(lin0, 0));
+  EXPECT_LT(test::swing_frequency_along(lin1, 5), test::swing_frequency_along(lin0, 5));
 
   // Statics: the lower end of each rod (the spring) carries its share of the
   // body plus half the rod's weight; the load cell at the upper end
@@ -418,8 +407,8 @@ TEST(RigEffects, RodMassActsAsAThirdAtTheLowerJointAndHalfItsWeight) {
   }
   EXPECT_NEAR(rig1.suspended_weight() - rig0.suspended_weight(), n * 0.5 * rod_weight, 1e-9 * m * kG);
   record("sway_ratio_measured_expected",
-         {swing_frequency_along(lin1, 0) / swing_frequency_along(lin0, 0), sway_ratio});
-  record("yaw_ratio_measured_expected", {swing_frequency_along(lin1, 5) / swing_frequency_along(lin0, 5), yaw_ratio});
+         {test::swing_frequency_along(lin1, 0) / test::swing_frequency_along(lin0, 0), sway_ratio});
+  record("yaw_ratio_measured_expected", {test::swing_frequency_along(lin1, 5) / test::swing_frequency_along(lin0, 5), yaw_ratio});
   record("rod1_spring_and_cell_increase_N", {k1.rods[0].force - k0.rods[0].force, s1.force(0) - s0.force(0)});
 }
 
@@ -644,7 +633,7 @@ TEST(RigEffects, FixedFrameFlexibilitySagsAndSlowsTheSway) {
   const double A2 = M1 * M2, A1 = -(a * M2 + (a + b) * M1), A0 = a * b;
   const double lam = (-A1 - std::sqrt(A1 * A1 - 4 * A2 * A0)) / (2 * A2);
   const double f_expected = std::sqrt(lam) / (2 * kPi);
-  const double f_rigid = swing_frequency_along(lin0, 0), f_flex = swing_frequency_along(lin1, 0);
+  const double f_rigid = test::swing_frequency_along(lin0, 0), f_flex = test::swing_frequency_along(lin1, 0);
   EXPECT_NEAR(f_flex, f_expected, 1e-5 * f_expected);
   // 0.81 % slower: the frame's n kf = 6e4 N/m in series with the pendulum's W / l = 981 N/m.
   EXPECT_LT(f_flex, f_rigid * (1 - 0.005));

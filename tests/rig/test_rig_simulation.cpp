@@ -27,17 +27,6 @@ double crossing_frequency(const Eigen::VectorXd& t, const Eigen::VectorXd& x) {
   return (up.size() - 1) / (up.back() - up.front());
 }
 
-// The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
-double swing_frequency_along(const rig::Linearization& lin, int j) {
-  double best = -1, f = 0;
-  for (const auto& m : lin.modes) {
-    if (m.kind != rig::RigModeKind::swing) continue;
-    const double share = m.shape(j) * (lin.M * m.shape)(j);
-    if (share > best) best = share, f = m.frequency_hz;
-  }
-  return f;
-}
-
 }  // namespace
 
 TEST(RigSimulation, UndampedEnergyDriftBelowOnePpmOverTwentySeconds) {
@@ -84,7 +73,7 @@ TEST(RigSimulation, FreeSwingFrequenciesMatchLinearization) {
   const rig::VirtualHistory h = rig::simulate_history(rig, lin.equilibrium.configuration, yaw);
   // Yaw moves each rod tangentially: the encoder about the radial axis a_i reads it (alpha).
   const double f_yaw = crossing_frequency(h.t, h.alpha.col(0));
-  const double f_lin_yaw = swing_frequency_along(lin, 5);
+  const double f_lin_yaw = test::swing_frequency_along(lin, 5);
   EXPECT_NEAR(f_yaw, f_lin_yaw, 0.005 * f_lin_yaw);
   rig::HistoryRequest sway;
   sway.initial = rig::InitialCondition{0.02, 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
@@ -97,7 +86,7 @@ TEST(RigSimulation, FreeSwingFrequenciesMatchLinearization) {
     ux(k) = u.x();
   }
   const double f_x = crossing_frequency(hs.t, ux);
-  const double f_lin_sway = swing_frequency_along(lin, 0);
+  const double f_lin_sway = test::swing_frequency_along(lin, 0);
   EXPECT_NEAR(f_x, f_lin_sway, 0.005 * f_lin_sway);
 }
 
