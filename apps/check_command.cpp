@@ -46,6 +46,7 @@ nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r) {
     modes.push_back({{"frequency_hz", m.frequency_hz},
                      {"kind", rig::to_string(m.kind)},
                      {"elastic_fraction", m.elastic_fraction},
+                     {"body_fraction", m.body_fraction},
                      {"strain_energy_share",
                       {{"fixed_frame", total > 0 ? m.strain.fixed_frame / total : 0.0},
                        {"rods", total > 0 ? m.strain.rods / total : 0.0},
@@ -53,7 +54,7 @@ nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r) {
   }
   j["modes"] = modes;
   const auto& eq = r.linearization.equilibrium;
-  j["equilibrium"] = {{"newton_steps", eq.iterations}, {"residual", eq.residual}};
+  j["equilibrium"] = {{"steps", eq.iterations}, {"residual", eq.residual}};
   j["eigen_check"] = {{"max_residual", r.linearization.eigen.residuals.maxCoeff()},
                       {"orthogonality_error", r.linearization.eigen.orthogonality_error},
                       {"stiffness_asymmetry", r.linearization.asymmetry}};

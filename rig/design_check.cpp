@@ -33,12 +33,19 @@ Frequencies scaled(const RigModel& model, Component c, double s) {
 
 // Bisection on log(s) for ratio(s) = target over [1e-3, 1e4]: the ratio grows
 // with the stiffness of the component that dominates f1 until another
-// component or the swing takes over.
+// component or the swing takes over. A rig that finds no equilibrium at s
+// (a frame so soft that it sags by metres) counts as ratio 0.
 StiffnessAdvice advise(const RigModel& model, Component c, double target) {
   StiffnessAdvice a;
   a.component = c;
   constexpr double lo_bound = 1e-3, hi_bound = 1e4;
-  const auto ratio_at = [&](double s) { return scaled(model, c, s).ratio().value_or(HUGE_VAL); };
+  const auto ratio_at = [&](double s) {
+    try {
+      return scaled(model, c, s).ratio().value_or(HUGE_VAL);
+    } catch (const NoEquilibrium&) {
+      return 0.0;
+    }
+  };
   a.ratio_limit = ratio_at(hi_bound);
   const double r_lo = ratio_at(lo_bound);
   if (a.ratio_limit < target) {

@@ -2,16 +2,17 @@
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
-#include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 #include <string>
 
+#include "rig/dense_eigen_solver.hpp"
 #include "rig/encoder.hpp"
 #include "rig/linearization.hpp"
 
@@ -115,10 +116,12 @@ Integrator::Integrator(const RigSystem& rig, const SimulationOptions& options) :
   check(CVodeSVtolerances(im.mem, options.relative_tolerance, im.atol), "CVodeSVtolerances");
   check(CVodeSetUserData(im.mem, impl_), "CVodeSetUserData");
   im.A = SUNDenseMatrix(n, n, im.ctx);
-  im.LS = SUNLinSol_Dense(im.y, im.A, im.ctx);
+  im.LS = make_dense_eigen_solver(im.ctx);
   check(CVodeSetLinearSolver(im.mem, im.LS, im.A), "CVodeSetLinearSolver");
   check(CVodeSetMaxNumSteps(im.mem, 10000000), "CVodeSetMaxNumSteps");
   if (options.max_step_s > 0) check(CVodeSetMaxStep(im.mem, options.max_step_s), "CVodeSetMaxStep");
+  if (const char* e = std::getenv("RIG_MAXORD")) check(CVodeSetMaxOrd(im.mem, std::atoi(e)), "maxord");
+  if (std::getenv("RIG_STALD")) check(CVodeSetStabLimDet(im.mem, SUNTRUE), "stald");
 }
 
 Integrator::~Integrator() { delete impl_; }
@@ -194,7 +197,7 @@ Configuration released_from(const RigSystem& rig, const Configuration& eq, const
   EquilibriumOptions opt;
   opt.held = {0, 1, 5};
   const Equilibrium held = static_equilibrium(rig, rig.displaced(eq, s), opt);
-  if (!held.converged) throw std::runtime_error("initial condition: " + held.message);
+  if (!held.converged) throw NoEquilibrium("initial condition: " + held.message);
   return held.configuration;
 }
 
@@ -284,7 +287,7 @@ void MeasurementOptions::validate() const {
 std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options) {
   options.validate();
   const Equilibrium eq = static_equilibrium(rig);
-  if (!eq.converged) throw std::runtime_error(eq.message);
+  if (!eq.converged) throw NoEquilibrium(eq.message);
   const auto& initial = rig.model().release.initial;
   std::vector<std::vector<VirtualHistory>> sets(options.sets);
   for (int k = 0; k < options.sets; ++k) {
