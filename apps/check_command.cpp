@@ -12,6 +12,7 @@
 #include "io/rig_reader.hpp"
 #include "io/rig_vtk.hpp"
 #include "rig/design_check.hpp"
+#include "rig/equilibrium.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -89,7 +90,13 @@ int run(const CheckArgs& a) {
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "check: frame reduction: %s\n", s.c_str()); };
   const rig::RigModel model = io::read_rig(a.rig, ro);
-  const rig::CheckResult r = rig::design_check(model);
+  const rig::CheckResult r = [&] {
+    try {
+      return rig::design_check(model);
+    } catch (const rig::NoEquilibrium& e) {
+      throw io::no_equilibrium_error(a.rig, model, e.what());
+    }
+  }();
   print(r);
   if (!a.out.empty()) {
     const std::filesystem::path out(a.out);

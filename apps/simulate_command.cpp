@@ -9,6 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/rig_reader.hpp"
+#include "rig/equilibrium.hpp"
 #include "rig/simulation.hpp"
 
 namespace rigflex::app {
@@ -59,7 +60,13 @@ int run(const SimulateArgs& a) {
       std::fprintf(stderr, "simulate: set %d/%d, history %d/%d\n", set, a.sets, history, a.histories);
     };
   }
-  const auto sets = rig::simulate_measurement(rig, o);
+  const auto sets = [&] {
+    try {
+      return rig::simulate_measurement(rig, o);
+    } catch (const rig::NoEquilibrium& e) {
+      throw io::no_equilibrium_error(a.rig, model, e.what());
+    }
+  }();
   io::FileBatch batch;
   const std::filesystem::path out(a.out);
   for (size_t k = 0; k < sets.size(); ++k) {
@@ -86,9 +93,9 @@ void add_simulate_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("simulate", "Simulate the rig's release and free swing; write measurement CSVs");
   auto a = std::make_shared<SimulateArgs>();
   cmd->add_option("rig", a->rig, "rig YAML file")->required();
-  cmd->add_option("--sets", a->sets, "measurement sets (repeated measurements)")->check(CLI::PositiveNumber);
-  cmd->add_option("--histories", a->histories, "time histories per set")->check(CLI::PositiveNumber);
-  cmd->add_option("--duration", a->duration, "record length after release [s]")->check(CLI::PositiveNumber);
+  cmd->add_option("--sets", a->sets, "measurement sets (repeated measurements)")->check(positive());
+  cmd->add_option("--histories", a->histories, "time histories per set")->check(positive());
+  cmd->add_option("--duration", a->duration, "record length after release [s]")->check(positive());
   cmd->add_option("--seed", a->seed, "seed of the pushes and the sensor noise");
   cmd->add_option("--out", a->out, "output folder: DIR/set<k>/h<j>.csv")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");

@@ -13,6 +13,9 @@
 // Measurement notes:
 //   * wall times, best of --repeat; the equilibrium is computed once, outside
 //     the timings (`rigflex simulate` does the same once per run);
+//   * "dF N" and "dangle rad": the largest difference of the noise-free
+//     signals (load cells; encoders) from a run with 100x tighter tolerances,
+//     to read against the sensors' noise (columns "noise");
 //   * "rhs us" is one evaluation of the equations of motion (generalized
 //     forces and accelerations) at the equilibrium, averaged over 2e4 calls;
 //     "rhs share" = rhs evaluations x rhs us / history time.
@@ -84,15 +87,26 @@ double rhs_microseconds(const rig::RigSystem& rig, const rig::Configuration& c) 
   return us;
 }
 
+rig::VirtualHistory noise_free_history(rig::RigModel model, double tolerance_factor, const rig::HistoryRequest& req) {
+  model.sensors.force_noise_n = model.sensors.angle_noise_rad = model.sensors.force_resolution_n = 0.0;
+  model.sensors.encoder_bits = 0;
+  model.simulation.relative_tolerance *= tolerance_factor;
+  model.simulation.position_tolerance *= tolerance_factor;
+  const rig::RigSystem rig(model);
+  const rig::Equilibrium eq = rig::static_equilibrium(rig);
+  if (!eq.converged) throw std::runtime_error(eq.message);
+  return rig::simulate_history(rig, eq.configuration, req);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
-    std::printf("| rig | states | history s | x real time | steps | rhs evals | jac evals | rhs us | rhs share | "
-                "%d histories s |\n",
+    std::printf("| rig | states | history s | x real time | steps | newton its | LU setups | rhs evals | jac evals | "
+                "rhs us | rhs share | %d histories s | dF N | dangle rad | noise N, rad |\n",
                 o.histories);
-    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const std::string& file : o.rigs) {
       const rig::RigModel model = io::read_rig(file);
       const rig::RigSystem rig(model);
@@ -120,9 +134,15 @@ int main(int argc, char** argv) {
       }
       const double rhs_us = rhs_microseconds(rig, eq.configuration);
       const double simulated = o.duration + (req.push ? req.push->duration_s : 0.0);
-      std::printf("| %s | %d | %.3f | %.0f | %ld | %ld | %ld | %.2f | %.2f | %.3f |\n", model.name.c_str(),
-                  rig.state_size(), best_history, simulated / best_history, stats.steps, stats.rhs_evaluations,
-                  stats.jacobian_evaluations, rhs_us, stats.rhs_evaluations * rhs_us * 1e-6 / best_history, best_set);
+      const rig::VirtualHistory h1 = noise_free_history(model, 1.0, req), h2 = noise_free_history(model, 0.01, req);
+      const double dF = (h1.force - h2.force).cwiseAbs().maxCoeff();
+      const double da = std::max((h1.alpha - h2.alpha).cwiseAbs().maxCoeff(), (h1.beta - h2.beta).cwiseAbs().maxCoeff());
+      std::printf("| %s | %d | %.3f | %.0f | %ld | %ld | %ld | %ld | %ld | %.2f | %.2f | %.3f | %.2g | %.2g | %.2g, %.2g |\n",
+                  model.name.c_str(),
+                  rig.state_size(), best_history, simulated / best_history, stats.steps, stats.newton_iterations,
+                  stats.linear_setups, stats.rhs_evaluations,
+                  stats.jacobian_evaluations, rhs_us, stats.rhs_evaluations * rhs_us * 1e-6 / best_history, best_set, dF, da,
+                  model.sensors.force_noise_n, model.sensors.angle_noise_rad);
       std::fflush(stdout);
     }
     return 0;

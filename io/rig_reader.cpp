@@ -9,6 +9,7 @@
 #include "io/reduced_export.hpp"
 #include "io/yaml_fields.hpp"
 #include "reduction/frame_reduction.hpp"
+#include "rig/effect.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
 
@@ -22,6 +23,21 @@ struct Reader {
   std::filesystem::path base;
   const RigReadOptions& options;
   int rods = 0;
+
+  // Runs `read` with the keys of its errors named under `path`: "upper" read
+  // for rod 2 is reported as "geometry.rods[2].upper". Errors about other
+  // files (a frame model) and keys already under `path` pass unchanged.
+  template <class F>
+  auto within(const std::string& path, F read) const -> decltype(read()) {
+    try {
+      return read();
+    } catch (const InputError& e) {
+      const std::string& k = e.key();
+      const bool named = k == path || k.rfind(path + ".", 0) == 0 || k.rfind(path + "[", 0) == 0;
+      if (e.file() != ctx.file() || k.empty() || named) throw;
+      throw InputError(e.file(), e.line(), path + "." + k, e.reason());
+    }
+  }
 
   // Per-rod values: a list of n, or one value for all rods.
   std::vector<double> per_rod(const YAML::Node& map, const std::string& key) const {
@@ -49,13 +65,16 @@ struct Reader {
     const YAML::Node rods_node = ctx.required(g, "rods");
     ctx.expect_sequence(rods_node, "rods");
     for (const auto& r : rods_node) {
-      ctx.expect_map(r, "rods[]", {"upper", "lower", "length", "encoder_axis"});
-      rig::RodGeometry rod;
-      rod.upper = ctx.vec3(r, "upper");
-      rod.lower = ctx.vec3(r, "lower");
-      rod.length = ctx.number(r, "length");
-      rod.encoder_axis = ctx.vec3(r, "encoder_axis");
-      out.rods.push_back(rod);
+      // Rod i is entry i (1-based), as in the spec and RigModel::validate.
+      within("geometry.rods[" + std::to_string(out.rods.size() + 1) + "]", [&] {
+        ctx.expect_map(r, "rods[]", {"upper", "lower", "length", "encoder_axis"});
+        rig::RodGeometry rod;
+        rod.upper = ctx.vec3(r, "upper");
+        rod.lower = ctx.vec3(r, "lower");
+        rod.length = ctx.number(r, "length");
+        rod.encoder_axis = ctx.vec3(r, "encoder_axis");
+        out.rods.push_back(rod);
+      });
     }
     return out;
   }
@@ -75,16 +94,20 @@ struct Reader {
     rig::SensorOptions o;
     o.sample_rate_hz = ctx.number_or(s, "sample_rate", o.sample_rate_hz);
     if (s["load_cell"]) {
-      const YAML::Node lc = s["load_cell"];
-      ctx.expect_map(lc, "load_cell", {"noise", "resolution"});
-      o.force_noise_n = ctx.number_or(lc, "noise", 0.0);
-      o.force_resolution_n = ctx.number_or(lc, "resolution", 0.0);
+      within("sensors.load_cell", [&] {
+        const YAML::Node lc = s["load_cell"];
+        ctx.expect_map(lc, "load_cell", {"noise", "resolution"});
+        o.force_noise_n = ctx.number_or(lc, "noise", 0.0);
+        o.force_resolution_n = ctx.number_or(lc, "resolution", 0.0);
+      });
     }
     if (s["encoder"]) {
-      const YAML::Node e = s["encoder"];
-      ctx.expect_map(e, "encoder", {"bits", "noise"});
-      o.encoder_bits = ctx.integer_or(e, "bits", 0);
-      o.angle_noise_rad = ctx.number_or(e, "noise", 0.0);
+      within("sensors.encoder", [&] {
+        const YAML::Node e = s["encoder"];
+        ctx.expect_map(e, "encoder", {"bits", "noise"});
+        o.encoder_bits = ctx.integer_or(e, "bits", 0);
+        o.angle_noise_rad = ctx.number_or(e, "noise", 0.0);
+      });
     }
     return o;
   }
@@ -102,25 +125,28 @@ struct Reader {
       const YAML::Node list = r["initial"];
       ctx.expect_sequence(list, "initial");
       for (const auto& e : list) {
-        ctx.expect_map(e, "initial[]", {"x", "y", "yaw", "velocity", "angular_velocity"});
-        rig::InitialCondition ic;
-        ic.x = ctx.number_or(e, "x", 0.0);
-        ic.y = ctx.number_or(e, "y", 0.0);
-        ic.yaw = ctx.number_or(e, "yaw", 0.0);
-        if (e["velocity"]) ic.velocity = ctx.vec3(e, "velocity");
-        if (e["angular_velocity"]) ic.angular_velocity = ctx.vec3(e, "angular_velocity");
-        o.initial.push_back(ic);
+        within("release.initial[" + std::to_string(o.initial.size() + 1) + "]", [&] {
+          ctx.expect_map(e, "initial[]", {"x", "y", "yaw", "velocity", "angular_velocity"});
+          rig::InitialCondition ic;
+          ic.x = ctx.number_or(e, "x", 0.0);
+          ic.y = ctx.number_or(e, "y", 0.0);
+          ic.yaw = ctx.number_or(e, "yaw", 0.0);
+          if (e["velocity"]) ic.velocity = ctx.vec3(e, "velocity");
+          if (e["angular_velocity"]) ic.angular_velocity = ctx.vec3(e, "angular_velocity");
+          o.initial.push_back(ic);
+        });
       }
     }
     return o;
   }
 
   rig::SimulationOptions simulation(const YAML::Node& s) const {
-    ctx.expect_map(s, "simulation", {"relative_tolerance", "position_tolerance", "max_step"});
+    ctx.expect_map(s, "simulation", {"relative_tolerance", "position_tolerance", "max_step", "max_order"});
     rig::SimulationOptions o;
     o.relative_tolerance = ctx.number_or(s, "relative_tolerance", o.relative_tolerance);
     o.position_tolerance = ctx.number_or(s, "position_tolerance", o.position_tolerance);
     o.max_step_s = ctx.number_or(s, "max_step", o.max_step_s);
+    o.max_order = ctx.integer_or(s, "max_order", o.max_order);
     return o;
   }
 
@@ -139,6 +165,8 @@ struct Reader {
       }
     }
     const std::filesystem::path file = base / ctx.text(e, "model");
+    // Named here: the model reader's own error would not say which rig key points at it.
+    if (!std::filesystem::is_regular_file(file)) ctx.fail(e["model"], key + ".model", "no such file: " + file.string());
     const ModelFile model = read_model(file);
     reduction::FrameReductionOptions o;
     o.interface_set = ctx.text(e, "interface");
@@ -262,6 +290,33 @@ struct Reader {
   }
 };
 
+// Why `name` cannot be a rig name, or "": it is written on one "# rig: name"
+// line of every measurement file (and into check.json), so no line breaks or
+// other control characters, and no blanks at either end.
+std::string name_problem(const std::string& name) {
+  if (name.empty()) return "must not be empty";
+  for (const char c : name) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n' || c == '\r') return "must be one line (it contains a line break)";
+    if (u < 0x20 || u == 0x7f) return "must not contain control characters (character code " + std::to_string(u) + ")";
+  }
+  if (name.front() == ' ' || name.back() == ' ') return "must not start or end with a blank";
+  return "";
+}
+
+// The rig's name when the file gives none: the file's stem, with control
+// characters replaced and blanks trimmed (a file may be called " rig\n.yaml").
+std::string default_name(const std::string& source) {
+  std::string stem = std::filesystem::path(source).stem().string();
+  for (char& c : stem) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) c = '_';
+  }
+  const auto first = stem.find_first_not_of(' ');
+  if (first == std::string::npos) return "rig";
+  return stem.substr(first, stem.find_last_not_of(' ') - first + 1);
+}
+
 // The node a validation message's field path ("geometry.rods[2].length") names.
 YAML::Node node_at(const YAML::Node& root, const std::string& path) {
   YAML::Node n = root;
@@ -297,25 +352,39 @@ rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source,
   if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
   ctx.expect_map(root, "rig", {"name", "geometry", "body", "sensors", "release", "simulation", "effects"});
   rig::RigModel model;
-  model.name = ctx.text_or(root, "name", std::filesystem::path(source).stem().string());
-  model.geometry = r.geometry(ctx.required(root, "geometry"));
+  if (root["name"]) {
+    model.name = ctx.text(root, "name");
+    if (const std::string why = name_problem(model.name); !why.empty()) ctx.fail(root["name"], "name", why);
+  } else {
+    model.name = default_name(source);
+  }
+  model.geometry = r.within("geometry", [&] { return r.geometry(ctx.required(root, "geometry")); });
   r.rods = model.geometry.rod_count();
   if (r.rods != 3 && r.rods != 4) {
-    ctx.fail(root["geometry"]["rods"], "rods", "a rig has 3 or 4 rods (got " + std::to_string(r.rods) + ")");
+    ctx.fail(root["geometry"]["rods"], "geometry.rods", "a rig has 3 or 4 rods (got " + std::to_string(r.rods) + ")");
   }
-  model.body = r.body(ctx.required(root, "body"));
-  if (root["sensors"]) model.sensors = r.sensors(root["sensors"]);
-  if (root["release"]) model.release = r.release(root["release"]);
-  if (root["simulation"]) model.simulation = r.simulation(root["simulation"]);
+  model.body = r.within("body", [&] { return r.body(ctx.required(root, "body")); });
+  if (root["sensors"]) model.sensors = r.within("sensors", [&] { return r.sensors(root["sensors"]); });
+  if (root["release"]) model.release = r.within("release", [&] { return r.release(root["release"]); });
+  if (root["simulation"]) model.simulation = r.within("simulation", [&] { return r.simulation(root["simulation"]); });
   if (root["effects"]) {
     const YAML::Node effects = root["effects"];
     if (!effects.IsMap()) ctx.fail(effects, "effects", "must be a mapping of effect name to parameters");
     for (const auto& kv : effects) {
       const std::string name = kv.first.as<std::string>();
+      const std::string key = "effects." + name;
       const YAML::Node& e = kv.second;
-      if (!e.IsMap()) ctx.fail(e, "effects." + name, "parameters must be a mapping");
-      if (!ctx.boolean_or(e, "enabled", true)) continue;
-      model.effects.push_back(r.effect(name, e, model.geometry));
+      bool known = false;
+      std::string names;
+      for (const char* n : rig::effect_names()) {
+        known = known || name == n;
+        names += std::string(names.empty() ? "" : ", ") + n;
+      }
+      // Checked before 'enabled': a misspelt effect switched off is still misspelt.
+      if (!known) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + names + ")");
+      if (!e.IsMap()) ctx.fail(e, key, "parameters must be a mapping");
+      if (!r.within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
+      model.effects.push_back(r.within(key, [&] { return r.effect(name, e, model.geometry); }));
     }
   }
   try {
@@ -328,6 +397,34 @@ rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source,
     throw InputError(source, YamlContext::line_of(at), field, colon == std::string::npos ? msg : msg.substr(colon + 2));
   }
   return model;
+}
+
+InputError no_equilibrium_error(const std::filesystem::path& file, const rig::RigModel& model,
+                                const std::string& detail) {
+  std::string key = "geometry";
+  std::string advice = "the rods' joint centres and lengths hold the body nowhere near the nominal pose";
+  if (detail.rfind("initial condition", 0) == 0) {
+    key = "release.initial";
+    advice = "an initial displacement is too large for the rig to hold";
+  } else {
+    for (const auto& e : model.effects) {
+      const std::string name = e->name();
+      if (name == "rod_compliance" || name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility" ||
+          name == "rod_length_error" || name == "joint_position_error") {
+        key = "effects." + name;
+        advice = "with this effect the rig holds the body nowhere near the nominal pose (too soft, or too large an "
+                 "error?)";
+        break;
+      }
+    }
+  }
+  int line = 0;
+  try {
+    line = YamlContext::line_of(node_at(YAML::LoadFile(file.string()), key));
+  } catch (const YAML::Exception&) {
+    // The file was read once already; without it, the error names no line.
+  }
+  return InputError(file.string(), line, key, detail + ": " + advice);
 }
 
 rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& options) {

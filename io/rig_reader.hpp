@@ -9,6 +9,7 @@
 #include <functional>
 #include <string>
 
+#include "io/input_error.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::io {
@@ -21,5 +22,16 @@ rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& 
 // `source` names the text in errors; relative paths inside resolve against `base`.
 rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,
                         const RigReadOptions& options = {});
+
+// The error for a rig read from `file` whose static equilibrium was not found
+// (rig::NoEquilibrium, message `detail`, from the check or the simulation):
+// names the file and the line and key of the likeliest cause. That is
+// release.initial when an initial condition could not be held, else the first
+// effect switched on that changes the rig's statics (rod_compliance,
+// fixed_frame_flexibility, carrying_frame_flexibility, rod_length_error,
+// joint_position_error), else geometry. A rigid rig of valid geometry always
+// has one.
+InputError no_equilibrium_error(const std::filesystem::path& file, const rig::RigModel& model,
+                                const std::string& detail);
 
 }  // namespace rigflex::io

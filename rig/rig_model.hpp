@@ -56,10 +56,20 @@ struct ReleaseOptions {
   std::vector<InitialCondition> initial;                // non-empty: use these instead of pushes
 };
 
+// CVODE's BDF: order at most max_order (2 by default: BDF2 is A-stable, so
+// the undamped rod and frame vibrations at 80-500 Hz, far below the sensor
+// noise, do not limit the step; orders 3-5 are unstable there unless every
+// step resolves them, which cost 20x more steps on examples/large-rig).
+// The tolerances' effect on the signals is measured by
+// bench_rig_simulation against a 100x tighter run (docs/rig.md): on
+// examples/large-rig, 0.23 N on the load cells (noise 3 N) and 2.6e-5 rad on
+// the encoders after 15 s, a phase drift of the swing (BDF2's frequency
+// error, ~1e-5 relative), not noise-like error.
 struct SimulationOptions {
-  double relative_tolerance = 1e-8;
+  double relative_tolerance = 1e-6;
   double position_tolerance = 1e-10;  // m (rad for angles), absolute
-  double max_step_s = 0.0;            // 0: no limit
+  double max_step_s = 0.0;           // 0: no limit
+  int max_order = 2;                 // 1-5
   void validate() const;              // std::invalid_argument
 };
 

@@ -299,7 +299,10 @@ double RigSystem::potential_energy(const Configuration& c) const {
 
 void RigSystem::pack(const Configuration& c, const Velocity& v, double* y) const {
   int o = 0;
-  for (int d = 0; d < 3; ++d) y[o++] = c.r(d);
+  // P relative to its nominal position: the integrator's relative tolerance
+  // then scales with the motion (centimetres), not with the height of P.
+  const Vec3 r = c.r - assembly_.geometry.reference_point;
+  for (int d = 0; d < 3; ++d) y[o++] = r(d);
   y[o++] = c.q.w();
   y[o++] = c.q.x();
   y[o++] = c.q.y();
@@ -314,7 +317,7 @@ void RigSystem::pack(const Configuration& c, const Velocity& v, double* y) const
 
 void RigSystem::unpack(const double* y, Configuration& c, Velocity& v) const {
   int o = 0;
-  c.r = Vec3(y[0], y[1], y[2]);
+  c.r = Vec3(y[0], y[1], y[2]) + assembly_.geometry.reference_point;
   o = 3;
   c.q = Eigen::Quaterniond(y[o], y[o + 1], y[o + 2], y[o + 3]);
   o += 4;

@@ -106,7 +106,7 @@ class RigSystem {
   // Strain energy of an increment s about c (1/2 s' K_component s, exact for the linear parts).
   StrainEnergy incremental_strain_energy(const Configuration& c, const Eigen::VectorXd& s) const;
 
-  // State vector y = (r, q(w,x,y,z), eta, xf, V, w, eta', xf') for the integrator.
+  // State vector y = (r - P_nominal, q(w,x,y,z), eta, xf, V, w, eta', xf') for the integrator.
   void pack(const Configuration& c, const Velocity& v, double* y) const;
   void unpack(const double* y, Configuration& c, Velocity& v) const;
 

@@ -5,7 +5,6 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
 #include <numbers>
 #include <random>
@@ -109,19 +108,18 @@ Integrator::Integrator(const RigSystem& rig, const SimulationOptions& options) :
   for (int d = 0; d < 4; ++d) T[o++] = p / L;
   for (int j = 6; j < nc; ++j) T[o++] = p * steps(j) / steps(0);
   for (int j = 0; j < nc; ++j) T[o++] = w * p * (j < 3 ? 1.0 : j < 6 ? 1.0 / L : steps(j) / steps(0));
+  N_VConst(0.0, im.y);
+  im.A = SUNDenseMatrix(n, n, im.ctx);
+  im.LS = make_dense_eigen_solver(im.ctx);
   im.mem = CVodeCreate(CV_BDF, im.ctx);
   if (!im.mem) throw std::runtime_error("CVODE: CVodeCreate failed");
-  N_VConst(0.0, im.y);
   check(CVodeInit(im.mem, rig_rhs, 0.0, im.y), "CVodeInit");
   check(CVodeSVtolerances(im.mem, options.relative_tolerance, im.atol), "CVodeSVtolerances");
   check(CVodeSetUserData(im.mem, impl_), "CVodeSetUserData");
-  im.A = SUNDenseMatrix(n, n, im.ctx);
-  im.LS = make_dense_eigen_solver(im.ctx);
   check(CVodeSetLinearSolver(im.mem, im.LS, im.A), "CVodeSetLinearSolver");
   check(CVodeSetMaxNumSteps(im.mem, 10000000), "CVodeSetMaxNumSteps");
   if (options.max_step_s > 0) check(CVodeSetMaxStep(im.mem, options.max_step_s), "CVodeSetMaxStep");
-  if (const char* e = std::getenv("RIG_MAXORD")) check(CVodeSetMaxOrd(im.mem, std::atoi(e)), "maxord");
-  if (std::getenv("RIG_STALD")) check(CVodeSetStabLimDet(im.mem, SUNTRUE), "stald");
+  check(CVodeSetMaxOrd(im.mem, options.max_order), "CVodeSetMaxOrd");
 }
 
 Integrator::~Integrator() { delete impl_; }
@@ -160,6 +158,10 @@ const IntegratorStatistics& Integrator::statistics() const {
   stats_.jacobian_evaluations = v;
   CVodeGetNumErrTestFails(impl_->mem, &v);
   stats_.error_test_failures = v;
+  CVodeGetNumLinSolvSetups(impl_->mem, &v);
+  stats_.linear_setups = v;
+  CVodeGetNumNonlinSolvIters(impl_->mem, &v);
+  stats_.newton_iterations = v;
   return stats_;
 }
 

@@ -21,6 +21,7 @@ struct VirtualHistory {
 
 struct IntegratorStatistics {
   long steps = 0, rhs_evaluations = 0, jacobian_evaluations = 0, error_test_failures = 0;
+  long linear_setups = 0, newton_iterations = 0;
 };
 
 // A free swing from a state, sampled by a callback at every output time.
