@@ -14,8 +14,8 @@
 //   * wall times, best of --repeat; the equilibrium is computed once, outside
 //     the timings (`rigflex simulate` does the same once per run);
 //   * "dF N" and "dangle rad": the largest difference of the noise-free
-//     signals (load cells; encoders) from a run with 100x tighter tolerances,
-//     to read against the sensors' noise (columns "noise");
+//     signals (load cells; encoders) from a reference run (CVODE BDF2 at
+//     1e-8 relative, 1e-12 m), to read against the sensors' noise;
 //   * "rhs us" is one evaluation of the equations of motion (generalized
 //     forces and accelerations) at the equilibrium, averaged over 2e4 calls;
 //     "rhs share" = rhs evaluations x rhs us / history time.
@@ -31,6 +31,7 @@
 
 #include "io/rig_reader.hpp"
 #include "rig/equilibrium.hpp"
+#include "rig/linearization.hpp"
 #include "rig/simulation.hpp"
 
 namespace {
@@ -87,11 +88,17 @@ double rhs_microseconds(const rig::RigSystem& rig, const rig::Configuration& c) 
   return us;
 }
 
-rig::VirtualHistory noise_free_history(rig::RigModel model, double tolerance_factor, const rig::HistoryRequest& req) {
+// Noise-free signals with the model's integrator settings, or (reference)
+// with CVODE's BDF2 at 1e-8 relative and 1e-12 m.
+rig::VirtualHistory noise_free_history(rig::RigModel model, bool reference, const rig::HistoryRequest& req) {
   model.sensors.force_noise_n = model.sensors.angle_noise_rad = model.sensors.force_resolution_n = 0.0;
   model.sensors.encoder_bits = 0;
-  model.simulation.relative_tolerance *= tolerance_factor;
-  model.simulation.position_tolerance *= tolerance_factor;
+  if (reference) {
+    model.simulation.method = rig::IntegrationMethod::bdf;
+    model.simulation.max_order = 2;
+    model.simulation.relative_tolerance = 1e-8;
+    model.simulation.position_tolerance = 1e-12;
+  }
   const rig::RigSystem rig(model);
   const rig::Equilibrium eq = rig::static_equilibrium(rig);
   if (!eq.converged) throw std::runtime_error(eq.message);
@@ -110,17 +117,18 @@ int main(int argc, char** argv) {
     for (const std::string& file : o.rigs) {
       const rig::RigModel model = io::read_rig(file);
       const rig::RigSystem rig(model);
-      const rig::Equilibrium eq = rig::static_equilibrium(rig);
-      if (!eq.converged) throw std::runtime_error(file + ": " + eq.message);
+      const rig::Linearization lin = rig::linearize(rig);
+      const rig::Configuration& eq = lin.equilibrium.configuration;
       rig::HistoryRequest req;
       req.duration_s = o.duration;
       req.push = rig::draw_push(rig, 1, 1, 1);
       req.noise_seed = rig::noise_seed(1, 1, 1);
+      req.linearization = &lin;
       double best_history = std::numeric_limits<double>::infinity();
       rig::IntegratorStatistics stats;
       for (int r = 0; r < o.repeat; ++r) {
         const auto t0 = clock_type::now();
-        rig::simulate_history(rig, eq.configuration, req, &stats);
+        rig::simulate_history(rig, eq, req, &stats);
         best_history = std::min(best_history, seconds_since(t0));
       }
       rig::MeasurementOptions mo;
@@ -132,9 +140,9 @@ int main(int argc, char** argv) {
         rig::simulate_measurement(rig, mo);
         best_set = std::min(best_set, seconds_since(t0));
       }
-      const double rhs_us = rhs_microseconds(rig, eq.configuration);
+      const double rhs_us = rhs_microseconds(rig, eq);
       const double simulated = o.duration + (req.push ? req.push->duration_s : 0.0);
-      const rig::VirtualHistory h1 = noise_free_history(model, 1.0, req), h2 = noise_free_history(model, 0.01, req);
+      const rig::VirtualHistory h1 = noise_free_history(model, false, req), h2 = noise_free_history(model, true, req);
       const double dF = (h1.force - h2.force).cwiseAbs().maxCoeff();
       const double da = std::max((h1.alpha - h2.alpha).cwiseAbs().maxCoeff(), (h1.beta - h2.beta).cwiseAbs().maxCoeff());
       std::printf("| %s | %d | %.3f | %.0f | %ld | %ld | %ld | %ld | %ld | %.2f | %.2f | %.3f | %.2g | %.2g | %.2g, %.2g |\n",

@@ -141,8 +141,15 @@ struct Reader {
   }
 
   rig::SimulationOptions simulation(const YAML::Node& s) const {
-    ctx.expect_map(s, "simulation", {"relative_tolerance", "position_tolerance", "max_step", "max_order"});
+    ctx.expect_map(s, "simulation",
+                   {"method", "relative_tolerance", "position_tolerance", "max_step", "max_order"});
     rig::SimulationOptions o;
+    const std::string method = ctx.text_or(s, "method", "generalized-alpha");
+    if (method == "bdf") {
+      o.method = rig::IntegrationMethod::bdf;
+    } else if (method != "generalized-alpha") {
+      ctx.fail(s["method"], "simulation.method", "unknown method '" + method + "' (generalized-alpha, bdf)");
+    }
     o.relative_tolerance = ctx.number_or(s, "relative_tolerance", o.relative_tolerance);
     o.position_tolerance = ctx.number_or(s, "position_tolerance", o.position_tolerance);
     o.max_step_s = ctx.number_or(s, "max_step", o.max_step_s);

@@ -56,16 +56,16 @@ struct ReleaseOptions {
   std::vector<InitialCondition> initial;                // non-empty: use these instead of pushes
 };
 
-// CVODE's BDF: order at most max_order (2 by default: BDF2 is A-stable, so
-// the undamped rod and frame vibrations at 80-500 Hz, far below the sensor
-// noise, do not limit the step; orders 3-5 are unstable there unless every
-// step resolves them, which cost 20x more steps on examples/large-rig).
-// The tolerances' effect on the signals is measured by
-// bench_rig_simulation against a 100x tighter run (docs/rig.md): on
-// examples/large-rig, 0.23 N on the load cells (noise 3 N) and 2.6e-5 rad on
-// the encoders after 15 s, a phase drift of the swing (BDF2's frequency
-// error, ~1e-5 relative), not noise-like error.
+// generalized_alpha (default): fixed step from the rig's modes, see
+// rig/generalized_alpha.hpp; position_tolerance bounds its Newton
+// corrections. bdf: CVODE with error control, order <= max_order (2: BDF2
+// is A-stable, so the undamped rod and frame vibrations at 80-900 Hz do not
+// limit the step; orders 3-5 are unstable there unless every step resolves
+// them). The methods' effect on the signals is measured by
+// bench_rig_simulation against a tight BDF run (docs/rig.md).
+enum class IntegrationMethod { generalized_alpha, bdf };
 struct SimulationOptions {
+  IntegrationMethod method = IntegrationMethod::generalized_alpha;
   double relative_tolerance = 1e-6;
   double position_tolerance = 1e-10;  // m (rad for angles), absolute
   double max_step_s = 0.0;           // 0: no limit

@@ -136,9 +136,30 @@ Velocity RigSystem::at_rest() const {
   return v;
 }
 
+// The left Jacobian of SO(3), T(theta) = I + (1 - cos t)/t^2 [theta] +
+// (t - sin t)/t^3 [theta]^2: with it (dr, dtheta) is SE(3)'s exponential, the
+// exact motion under a constant body twist (r' = R V, R' = R [w]), which the
+// generalized-alpha steps need for second-order accuracy.
+namespace {
+Eigen::Matrix3d left_jacobian(const Vec3& theta) {
+  const double t2 = theta.squaredNorm();
+  const Eigen::Matrix3d S = skew(theta);
+  double a, b;
+  if (t2 < 1e-8) {
+    a = 0.5 - t2 / 24.0;
+    b = 1.0 / 6.0 - t2 / 120.0;
+  } else {
+    const double t = std::sqrt(t2);
+    a = (1.0 - std::cos(t)) / t2;
+    b = (t - std::sin(t)) / (t2 * t);
+  }
+  return Eigen::Matrix3d::Identity() + a * S + b * S * S;
+}
+}  // namespace
+
 Configuration RigSystem::displaced(const Configuration& c, const Eigen::VectorXd& s) const {
   Configuration out = c;
-  out.r = c.r + c.q * Vec3(s.segment<3>(0));
+  out.r = c.r + c.q * Vec3(left_jacobian(s.segment<3>(3)) * s.segment<3>(0));
   out.q = (c.q * exp_map(s.segment<3>(3))).normalized();
   if (ne_) out.eta = c.eta + s.segment(6, ne_);
   if (nf_) out.xf = c.xf + s.segment(6 + ne_, nf_);

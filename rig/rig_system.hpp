@@ -86,7 +86,8 @@ class RigSystem {
   Configuration nominal() const;
   Velocity at_rest() const;
   // Perturbation s = (dr (frame c), dtheta (frame c), d eta, d xf):
-  // r + R dr, R exp(dtheta), eta + d eta, xf + d xf.
+  // r + R T(dtheta) dr, R exp(dtheta), eta + d eta, xf + d xf, the
+  // exponential of SE(3) for (dr, dtheta) (T: SO(3)'s left Jacobian).
   Configuration displaced(const Configuration& c, const Eigen::VectorXd& s) const;
 
   Kinematics kinematics(const Configuration& c, const Velocity& v, double t) const;

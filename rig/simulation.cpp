@@ -13,6 +13,7 @@
 
 #include "rig/dense_eigen_solver.hpp"
 #include "rig/encoder.hpp"
+#include "rig/generalized_alpha.hpp"
 #include "rig/linearization.hpp"
 
 namespace rigflex::rig {
@@ -203,12 +204,10 @@ Configuration released_from(const RigSystem& rig, const Configuration& eq, const
   return held.configuration;
 }
 
-}  // namespace
-
-VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
-                                IntegratorStatistics* statistics) {
+template <class Stepper>
+VirtualHistory record(const RigSystem& rig, Stepper& integ, const Configuration& equilibrium,
+                      const HistoryRequest& request, IntegratorStatistics* statistics) {
   const SensorOptions& sensors = rig.model().sensors;
-  Integrator integ(rig, rig.model().simulation);
   double t_release = 0.0;
   VirtualHistory h;
   if (request.push) {
@@ -256,6 +255,23 @@ VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equil
   return h;
 }
 
+}  // namespace
+
+VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
+                                IntegratorStatistics* statistics) {
+  const SimulationOptions& options = rig.model().simulation;
+  if (options.method == IntegrationMethod::bdf) {
+    Integrator integ(rig, options);
+    return record(rig, integ, equilibrium, request, statistics);
+  }
+  std::optional<Linearization> own;
+  const Linearization* lin = request.linearization;
+  if (!lin) lin = &own.emplace(linearize(rig));
+  GeneralizedAlpha integ(rig, *lin, generalized_alpha_step(*lin, rig.model().sensors.sample_rate_hz),
+                         options.position_tolerance);
+  return record(rig, integ, equilibrium, request, statistics);
+}
+
 std::uint64_t noise_seed(std::uint64_t seed, int set, int history) {
   std::seed_seq seq{static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32),
                     static_cast<std::uint32_t>(set), static_cast<std::uint32_t>(history), 0x6e6f6973u};
@@ -288,8 +304,15 @@ void MeasurementOptions::validate() const {
 
 std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options) {
   options.validate();
-  const Equilibrium eq = static_equilibrium(rig);
-  if (!eq.converged) throw NoEquilibrium(eq.message);
+  std::optional<Linearization> lin;
+  Configuration eq;
+  if (rig.model().simulation.method == IntegrationMethod::generalized_alpha) {
+    eq = lin.emplace(linearize(rig)).equilibrium.configuration;
+  } else {
+    const Equilibrium e = static_equilibrium(rig);
+    if (!e.converged) throw NoEquilibrium(e.message);
+    eq = e.configuration;
+  }
   const auto& initial = rig.model().release.initial;
   std::vector<std::vector<VirtualHistory>> sets(options.sets);
   for (int k = 0; k < options.sets; ++k) {
@@ -298,6 +321,7 @@ std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& r
       HistoryRequest req;
       req.duration_s = options.duration_s;
       req.noise_seed = noise_seed(options.seed, k + 1, j + 1);
+      req.linearization = lin ? &*lin : nullptr;
       std::vector<std::pair<std::string, std::string>> comments;
       if (!initial.empty()) {
         req.initial = initial[static_cast<size_t>(j) % initial.size()];
@@ -310,7 +334,7 @@ std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& r
                       p.duration_s, p.force.x(), p.force.y(), p.force.z(), p.moment.z());
         comments.emplace_back("release", buf);
       }
-      VirtualHistory h = simulate_history(rig, eq.configuration, req);
+      VirtualHistory h = simulate_history(rig, eq, req);
       h.comments = comments;
       sets[k].push_back(std::move(h));
     }

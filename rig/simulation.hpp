@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rig/linearization.hpp"
 #include "rig/rig_system.hpp"
 
 namespace rigflex::rig {
@@ -74,6 +75,8 @@ struct HistoryRequest {
   std::optional<InitialCondition> initial;
   double duration_s = 15.0;
   std::uint64_t noise_seed = 0;
+  // At the equilibrium; for generalized-alpha (computed when absent).
+  const Linearization* linearization = nullptr;
 };
 VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
                                 IntegratorStatistics* statistics = nullptr);

@@ -7,6 +7,7 @@
 
 #include "rig/effects.hpp"
 #include "rig/encoder.hpp"
+#include "rig/generalized_alpha.hpp"
 #include "rig/linearization.hpp"
 #include "rig/rig_cases.hpp"
 #include "rig/simulation.hpp"
@@ -115,4 +116,73 @@ TEST(RigSimulation, DeterministicForAGivenSeed) {
     EXPECT_NEAR(counts, std::round(counts), 1e-6);
   }
   EXPECT_EQ(a[0][0].t.size(), 2 * 500 + 1);
+}
+
+TEST(RigSimulation, GeneralizedAlphaMatchesATightBdfRun) {
+  // The default integrator against CVODE's BDF2 at 1e-9 / 1e-12 m on a rig
+  // with compliant rods (bounce ~9 Hz) and a flexible fixed frame (joint
+  // springs): a push, then 8 s of free swing, noise-free.
+  rig::RigModel model = test::multifilar_rig(3, 0.6, 1.5, 1200.0, 1.0, 0.6);
+  model.effects.push_back(std::make_shared<rig::RodCompliance>(std::vector<double>(3, 8.0e7)));
+  rig::FixedFrameModel ff;
+  ff.K = 5.0e6 * Eigen::MatrixXd::Identity(9, 9);
+  ff.M = 40.0 * Eigen::MatrixXd::Identity(9, 9);
+  ff.C = 2.0 * 0.02 * std::sqrt(5.0e6 * 40.0) * Eigen::MatrixXd::Identity(9, 9);
+  ff.joint_row = {0, 3, 6};
+  ff.source = "test springs";
+  model.effects.push_back(std::make_shared<rig::FixedFrameFlexibility>(ff));
+  model.sensors.sample_rate_hz = 500.0;
+  rig::RigModel reference = model;
+  reference.simulation.method = rig::IntegrationMethod::bdf;
+  reference.simulation.relative_tolerance = 1e-9;
+  reference.simulation.position_tolerance = 1e-12;
+  const rig::RigSystem rig(model), ref(reference);
+  const rig::Linearization lin = rig::linearize(rig);
+  rig::HistoryRequest req;
+  req.push = rig::Push{1.0, Vec3(0.3 * 1200.0, 0.2 * 1200.0, 0.0), Vec3(0, 0, 40.0)};
+  req.duration_s = 8.0;
+  req.linearization = &lin;
+  rig::IntegratorStatistics stats;
+  const rig::VirtualHistory a = rig::simulate_history(rig, lin.equilibrium.configuration, req, &stats);
+  req.linearization = nullptr;
+  const rig::VirtualHistory b = rig::simulate_history(ref, lin.equilibrium.configuration, req);
+  const double h = rig::generalized_alpha_step(lin, 500.0);
+  EXPECT_EQ(stats.steps, std::lround(9.0 / h));
+  // Bound: generalized-alpha's period error, |dT / T| <= (omega h)^2 / 6 for
+  // rho_inf = 0.8 (twice the trapezoidal rule's 1 / 12), turned into a phase
+  // drift over the 9 s of the fastest swing, times the amplitude; the same
+  // for the forces' swing-induced variation.
+  double f_swing = 0;
+  for (const auto& m : lin.modes) {
+    if (m.kind == rig::RigModeKind::swing) f_swing = std::max(f_swing, m.frequency_hz);
+  }
+  const double w = 2.0 * std::numbers::pi * f_swing;
+  const double phase = w * 9.0 * (w * h) * (w * h) / 6.0;
+  const double angle_amplitude = std::max(b.alpha.cwiseAbs().maxCoeff(), b.beta.cwiseAbs().maxCoeff());
+  const Eigen::MatrixXd dF = b.force.rowwise() - b.force.colwise().mean();
+  const double force_amplitude = dF.cwiseAbs().maxCoeff();
+  const double d_angle = std::max((a.alpha - b.alpha).cwiseAbs().maxCoeff(), (a.beta - b.beta).cwiseAbs().maxCoeff());
+  const double d_force = (a.force - b.force).cwiseAbs().maxCoeff();
+  EXPECT_LT(d_angle, phase * angle_amplitude) << "h " << h << " phase bound " << phase;
+  EXPECT_LT(d_force, phase * force_amplitude + 1e-3 * force_amplitude) << "force amplitude " << force_amplitude;
+  ::testing::Test::RecordProperty("d_angle_rad", std::to_string(d_angle));
+  ::testing::Test::RecordProperty("d_force_n", std::to_string(d_force));
+  ::testing::Test::RecordProperty("angle_bound_rad", std::to_string(phase * angle_amplitude));
+}
+
+TEST(RigSimulation, GeneralizedAlphaStepResolvesTheFirstDeformationMode) {
+  rig::Linearization lin;
+  rig::RigMode swing, deformation, high;
+  swing.frequency_hz = 0.7;
+  deformation.kind = rig::RigModeKind::deformation;
+  deformation.frequency_hz = 40.0;
+  high.kind = rig::RigModeKind::deformation;
+  high.frequency_hz = 900.0;  // above the first deformation mode: damped, not resolved
+  lin.modes = {swing, deformation, high};
+  const double h = rig::generalized_alpha_step(lin, 500.0);
+  EXPECT_NEAR(0.002 / h, std::round(0.002 / h), 1e-12);  // divides the sample interval
+  EXPECT_LE(h, 1.0 / (30.0 * 40.0));
+  EXPECT_GT(h, 0.5 / (30.0 * 40.0));
+  lin.modes = {swing};
+  EXPECT_DOUBLE_EQ(rig::generalized_alpha_step(lin, 500.0), 0.002);
 }
