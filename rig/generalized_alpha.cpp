@@ -103,6 +103,52 @@ Eigen::VectorXd GeneralizedAlpha::accelerations(const Configuration& c, const Ei
   return rig_.accelerations(vel, rig_.generalized_forces(c, vel, t, external));
 }
 
+void GeneralizedAlpha::force_residual(const Configuration& c, const Eigen::VectorXd& v, const Eigen::VectorXd& vdot,
+                                      double t) {
+  ++stats_.rhs_evaluations;
+  const Eigen::Index ne = rig_.elastic_modes(), nf = rig_.fixed_dofs();
+  velocity_.V = v.segment<3>(0);
+  velocity_.w = v.segment<3>(3);
+  velocity_.eta = v.segment(6, ne);
+  velocity_.xf = v.segment(6 + ne, nf);
+  ExternalLoad load;
+  const ExternalLoad* external = nullptr;
+  if (push_ && t <= push_->duration_s) {
+    load = push_->at(t);
+    external = &load;
+  }
+  rig_.generalized_forces(c, velocity_, t, external, work_, Q_);
+  rig_.subtract_gyroscopic(velocity_, Q_);
+  residual_.noalias() = M_ * vdot;
+  residual_ -= Q_;
+}
+
+void GeneralizedAlpha::refresh_tangents(const Configuration& c, const Eigen::VectorXd& v, double t) {
+  // Forward differences (half the evaluations of central ones): an
+  // iteration matrix needs a few digits, not the linearization's eight.
+  const int n = rig_.coordinate_count();
+  const Eigen::VectorXd steps = coordinate_steps(rig_);
+  const Eigen::VectorXd vdot = Eigen::VectorXd::Zero(n);
+  force_residual(c, v, vdot, t);
+  const Eigen::VectorXd base = residual_;  // = -(Q - gyroscopic)
+  Eigen::VectorXd s = Eigen::VectorXd::Zero(n);
+  Configuration moved;
+  for (int j = 0; j < n; ++j) {
+    s(j) = steps(j);
+    rig_.displaced(c, s, moved);
+    force_residual(moved, v, vdot, t);
+    K_.col(j) = (residual_ - base) / steps(j);
+    s(j) = 0.0;
+  }
+  K_ = (0.5 * (K_ + K_.transpose())).eval();
+  for (int j = 0; j < n; ++j) {
+    s(j) = steps(j);
+    force_residual(c, v + s, vdot, t);
+    C_.col(j) = (residual_ - base) / steps(j);
+    s(j) = 0.0;
+  }
+}
+
 void GeneralizedAlpha::reset(double t, const Configuration& c, const Velocity& v, const Push* push) {
   t_ = t;
   c_ = c;
@@ -130,12 +176,15 @@ void GeneralizedAlpha::step(double h) {
   const double t1 = t_ + h;
   // Predictor: the acceleration extrapolated linearly from the last two steps.
   Eigen::VectorXd vd = vdot_ + (h / h_last_) * (vdot_ - vdot_previous_);
-  Eigen::VectorXd a1, v1;
-  Configuration c1;
+  // c1, v1, a1: the state at t + h that the current vd implies.
+  Configuration& c1 = trial_;
+  Eigen::VectorXd& a1 = a1_;
+  Eigen::VectorXd& v1 = v1_;
   auto update = [&] {
     a1 = (alpha_f_ * vdot_ + (1.0 - alpha_f_) * vd - alpha_m_ * a_) / (1.0 - alpha_m_);
     v1 = v_ + h * ((1.0 - gamma_) * a_ + gamma_ * a1);
-    c1 = rig_.displaced(c_, h * (v_ + h * ((0.5 - beta_) * a_ + beta_ * a1)));
+    increment_ = h * (v_ + h * ((0.5 - beta_) * a_ + beta_ * a1));
+    rig_.displaced(c_, increment_, c1);
   };
   // Modified Newton: the iteration matrix is kept while it contracts by 10x
   // per iteration and refreshed at the current state when it does not: the
@@ -145,12 +194,12 @@ void GeneralizedAlpha::step(double h) {
   double previous = HUGE_VAL;
   for (int it = 0;; ++it) {
     update();
-    const Eigen::VectorXd residual = vd - accelerations(c1, v1, t1);
-    const Eigen::VectorXd delta = -S_.solve(M_ * residual);
-    vd += delta;
+    force_residual(c1, v1, vd, t1);
+    delta_ = S_.solve(residual_);
+    vd -= delta_;
     ++stats_.newton_iterations;
     // Converged when the correction moves no joint by more than the tolerance.
-    const double moved = (h * h * beta_ * c * delta.cwiseProduct(joint_scale_)).cwiseAbs().maxCoeff();
+    const double moved = h * h * beta_ * c * delta_.cwiseProduct(joint_scale_).cwiseAbs().maxCoeff();
     if (moved <= tolerance_) break;
     const bool slow = it >= 1 && moved > 0.1 * previous;
     previous = moved;
@@ -160,9 +209,7 @@ void GeneralizedAlpha::step(double h) {
                                  std::to_string(t1) + " s");
       }
       update();
-      const Eigen::MatrixXd K = tangent_stiffness(rig_, c1);
-      K_ = 0.5 * (K + K.transpose());
-      C_ = damping_tangent(rig_, c1, v1);
+      refresh_tangents(c1, v1, t1);
       factorize(h, K_);
       ++refreshes;
       previous = HUGE_VAL;

@@ -46,6 +46,9 @@ class GeneralizedAlpha {
   void step(double h);
   void factorize(double h, const Eigen::MatrixXd& K);
   Eigen::VectorXd accelerations(const Configuration& c, const Eigen::VectorXd& v, double t);
+  // M vdot - (Q - gyroscopic terms) at (c, v, t), into residual_.
+  void refresh_tangents(const Configuration& c, const Eigen::VectorXd& v, double t);
+  void force_residual(const Configuration& c, const Eigen::VectorXd& v, const Eigen::VectorXd& vdot, double t);
 
   const RigSystem& rig_;
   double h_, tolerance_;
@@ -60,6 +63,11 @@ class GeneralizedAlpha {
   double h_last_ = 1.0;
   std::optional<Push> push_;
   IntegratorStatistics stats_;
+  // Scratch of the Newton iterations, sized once.
+  RigSystem::Workspace work_;
+  Velocity velocity_;
+  Configuration trial_;
+  Eigen::VectorXd Q_, residual_, delta_, increment_, a1_, v1_;
 };
 
 }  // namespace rigflex::rig

@@ -158,12 +158,18 @@ Eigen::Matrix3d left_jacobian(const Vec3& theta) {
 }  // namespace
 
 Configuration RigSystem::displaced(const Configuration& c, const Eigen::VectorXd& s) const {
-  Configuration out = c;
+  Configuration out;
+  displaced(c, s, out);
+  return out;
+}
+
+void RigSystem::displaced(const Configuration& c, const Eigen::VectorXd& s, Configuration& out) const {
   out.r = c.r + c.q * Vec3(left_jacobian(s.segment<3>(3)) * s.segment<3>(0));
   out.q = (c.q * exp_map(s.segment<3>(3))).normalized();
-  if (ne_) out.eta = c.eta + s.segment(6, ne_);
-  if (nf_) out.xf = c.xf + s.segment(6 + ne_, nf_);
-  return out;
+  out.eta = c.eta;
+  out.xf = c.xf;
+  if (ne_) out.eta += s.segment(6, ne_);
+  if (nf_) out.xf += s.segment(6 + ne_, nf_);
 }
 
 Vec3 RigSystem::joint_displacement_lower(const Eigen::VectorXd& eta, int i) const {
@@ -173,6 +179,11 @@ Vec3 RigSystem::joint_displacement_lower(const Eigen::VectorXd& eta, int i) cons
 
 Kinematics RigSystem::kinematics(const Configuration& c, const Velocity& v, double t) const {
   Kinematics k;
+  kinematics(c, v, t, k);
+  return k;
+}
+
+void RigSystem::kinematics(const Configuration& c, const Velocity& v, double t, Kinematics& k) const {
   k.t = t;
   k.R = c.q.normalized().toRotationMatrix();
   k.r = c.r;
@@ -201,7 +212,6 @@ Kinematics RigSystem::kinematics(const Configuration& c, const Velocity& v, doub
     rk.u_rate = (dv - rk.u * rk.u.dot(dv)) / rk.length;
     rk.force = k_(i) * (rk.length - L_(i));
   }
-  return k;
 }
 
 void RigSystem::collect_loads(const Kinematics& k, Loads& loads, const ExternalLoad* external) const {
@@ -222,10 +232,19 @@ void RigSystem::collect_loads(const Kinematics& k, Loads& loads, const ExternalL
 
 Eigen::VectorXd RigSystem::generalized_forces(const Configuration& c, const Velocity& v, double t,
                                               const ExternalLoad* external) const {
-  const Kinematics k = kinematics(c, v, t);
-  Loads loads;
+  Workspace work;
+  Eigen::VectorXd Q;
+  generalized_forces(c, v, t, external, work, Q);
+  return Q;
+}
+
+void RigSystem::generalized_forces(const Configuration& c, const Velocity& v, double t, const ExternalLoad* external,
+                                   Workspace& work, Eigen::VectorXd& Q) const {
+  const Kinematics& k = work.kinematics;
+  kinematics(c, v, t, work.kinematics);
+  Loads& loads = work.loads;
   collect_loads(k, loads, external);
-  Eigen::VectorXd Q = Eigen::VectorXd::Zero(coordinate_count());
+  Q.setZero(coordinate_count());
   const Eigen::Matrix3d Rt = k.R.transpose();
   Vec3 F = Rt * loads.body_force;
   Vec3 tau = Rt * loads.body_moment;
@@ -246,21 +265,24 @@ Eigen::VectorXd RigSystem::generalized_forces(const Configuration& c, const Velo
     const FixedFrameModel& ff = *assembly_.fixed_frame;
     Q.segment(6 + ne_, nf_) -= ff.K * c.xf + ff.C * v.xf;
   }
-  return Q;
 }
 
-Eigen::VectorXd RigSystem::accelerations(const Velocity& v, const Eigen::VectorXd& Q) const {
-  Eigen::VectorXd a(coordinate_count());
+void RigSystem::subtract_gyroscopic(const Velocity& v, Eigen::VectorXd& Q) const {
   Eigen::Matrix<double, 6, 1> xi;
   xi << v.V, v.w;
   const Eigen::Matrix<double, 6, 1> ph = Mb_ * xi;
   const Vec3 p = ph.head<3>(), h = ph.tail<3>();
-  Eigen::Matrix<double, 6, 1> rhs;
-  rhs.head<3>() = Q.segment<3>(0) - v.w.cross(p);
-  rhs.tail<3>() = Q.segment<3>(3) - v.w.cross(h) - v.V.cross(p);
-  a.head<6>() = Mb_llt_.solve(rhs);
-  if (ne_) a.segment(6, ne_) = Q.segment(6, ne_);
-  if (nf_) a.segment(6 + ne_, nf_) = Mf_llt_.solve(Q.segment(6 + ne_, nf_));
+  Q.segment<3>(0) -= v.w.cross(p);
+  Q.segment<3>(3) -= v.w.cross(h) + v.V.cross(p);
+}
+
+Eigen::VectorXd RigSystem::accelerations(const Velocity& v, const Eigen::VectorXd& Q) const {
+  Eigen::VectorXd rhs = Q;
+  subtract_gyroscopic(v, rhs);
+  Eigen::VectorXd a(coordinate_count());
+  a.head<6>() = Mb_llt_.solve(rhs.head<6>());
+  if (ne_) a.segment(6, ne_) = rhs.segment(6, ne_);
+  if (nf_) a.segment(6 + ne_, nf_) = Mf_llt_.solve(rhs.segment(6 + ne_, nf_));
   return a;
 }
 

@@ -89,11 +89,24 @@ class RigSystem {
   // r + R T(dtheta) dr, R exp(dtheta), eta + d eta, xf + d xf, the
   // exponential of SE(3) for (dr, dtheta) (T: SO(3)'s left Jacobian).
   Configuration displaced(const Configuration& c, const Eigen::VectorXd& s) const;
+  void displaced(const Configuration& c, const Eigen::VectorXd& s, Configuration& out) const;  // out != c
 
   Kinematics kinematics(const Configuration& c, const Velocity& v, double t) const;
+  void kinematics(const Configuration& c, const Velocity& v, double t, Kinematics& out) const;
   // Generalized forces (F, tau in frame c; modal; fixed-frame coordinates).
   Eigen::VectorXd generalized_forces(const Configuration& c, const Velocity& v, double t,
                                      const ExternalLoad* external = nullptr) const;
+  // The same into Q, with the evaluation's scratch kept in `work` (no
+  // allocation once sized: the integrators call this thousands of times).
+  struct Workspace {
+    Kinematics kinematics;
+    Loads loads;
+  };
+  void generalized_forces(const Configuration& c, const Velocity& v, double t, const ExternalLoad* external,
+                          Workspace& work, Eigen::VectorXd& Q) const;
+  // Q minus the gyroscopic terms of the body block: the right-hand side of
+  // M d(xi, eta', xf')/dt = ... (in place).
+  void subtract_gyroscopic(const Velocity& v, Eigen::VectorXd& Q) const;
   // Loads only (no inertia): used by the sensors, which read the rod forces.
   void collect_loads(const Kinematics& k, Loads& loads, const ExternalLoad* external) const;
   // d(xi, eta', xf')/dt from the generalized forces.
