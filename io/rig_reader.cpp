@@ -142,7 +142,7 @@ struct Reader {
 
   rig::SimulationOptions simulation(const YAML::Node& s) const {
     ctx.expect_map(s, "simulation",
-                   {"method", "relative_tolerance", "position_tolerance", "max_step", "max_order"});
+                   {"method", "relative_tolerance", "position_tolerance", "max_step", "max_order", "resolve_hz"});
     rig::SimulationOptions o;
     const std::string method = ctx.text_or(s, "method", "generalized-alpha");
     if (method == "bdf") {
@@ -154,6 +154,7 @@ struct Reader {
     o.position_tolerance = ctx.number_or(s, "position_tolerance", o.position_tolerance);
     o.max_step_s = ctx.number_or(s, "max_step", o.max_step_s);
     o.max_order = ctx.integer_or(s, "max_order", o.max_order);
+    o.resolve_hz = ctx.number_or(s, "resolve_hz", o.resolve_hz);
     return o;
   }
 

@@ -48,13 +48,13 @@ Eigen::MatrixXd damping_tangent(const RigSystem& rig, const Configuration& c, co
 
 }  // namespace
 
-double generalized_alpha_step(const Linearization& lin, double sample_rate_hz) {
+double generalized_alpha_step(const Linearization& lin, double sample_rate_hz, double resolve_hz) {
   if (!(sample_rate_hz > 0)) throw std::invalid_argument("generalized_alpha_step: sample rate must be positive");
-  double f = 0;
+  double f = resolve_hz;
   bool deformation_seen = false;
   for (const RigMode& m : lin.modes) {
     if (m.kind == RigModeKind::swing) f = std::max(f, m.frequency_hz);
-    if (m.kind == RigModeKind::deformation && !deformation_seen) {
+    if (m.kind == RigModeKind::deformation && !deformation_seen && resolve_hz == 0) {
       f = std::max(f, m.frequency_hz);
       deformation_seen = true;
     }

@@ -27,8 +27,9 @@
 namespace rigflex::rig {
 
 // Largest step <= 1 / (30 f) for every swing mode and the first deformation
-// mode of `lin`, that divides 1 / sample_rate_hz.
-double generalized_alpha_step(const Linearization& lin, double sample_rate_hz);
+// mode of `lin` (or, resolve_hz > 0, for every frequency up to resolve_hz),
+// that divides 1 / sample_rate_hz.
+double generalized_alpha_step(const Linearization& lin, double sample_rate_hz, double resolve_hz = 0.0);
 
 class GeneralizedAlpha {
  public:

@@ -40,6 +40,7 @@ void SimulationOptions::validate() const {
   require(position_tolerance > 0, "simulation.position_tolerance", "must be positive");
   require(max_step_s >= 0, "simulation.max_step", "must be >= 0");
   require(max_order >= 1 && max_order <= 5, "simulation.max_order", "must be 1 to 5");
+  require(resolve_hz >= 0 && resolve_hz <= 1e5, "simulation.resolve_hz", "must lie in [0, 1e5] Hz");
 }
 
 void RigModel::validate() const {

@@ -69,7 +69,10 @@ struct SimulationOptions {
   double relative_tolerance = 1e-6;
   double position_tolerance = 1e-10;  // m (rad for angles), absolute
   double max_step_s = 0.0;           // 0: no limit
-  int max_order = 2;                 // 1-5
+  int max_order = 2;                 // 1-5 (bdf)
+  // generalized_alpha resolves (>= 30 steps per period) every mode up to
+  // this frequency; 0: the swing modes and the first deformation mode.
+  double resolve_hz = 0.0;
   void validate() const;              // std::invalid_argument
 };
 

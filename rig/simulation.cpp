@@ -267,7 +267,8 @@ VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equil
   std::optional<Linearization> own;
   const Linearization* lin = request.linearization;
   if (!lin) lin = &own.emplace(linearize(rig));
-  GeneralizedAlpha integ(rig, *lin, generalized_alpha_step(*lin, rig.model().sensors.sample_rate_hz),
+  GeneralizedAlpha integ(rig, *lin,
+                         generalized_alpha_step(*lin, rig.model().sensors.sample_rate_hz, options.resolve_hz),
                          options.position_tolerance);
   return record(rig, integ, equilibrium, request, statistics);
 }
