@@ -141,6 +141,11 @@ void GeneralizedAlpha::refresh_tangents(const Configuration& c, const Eigen::Vec
     s(j) = 0.0;
   }
   K_ = (0.5 * (K_ + K_.transpose())).eval();
+  // Without dissipative effects (friction, drag) the damping is linear and C
+  // stays as built (the gyroscopic terms it leaves out weigh ~1e-4 of M in
+  // the iteration matrix at swing speeds).
+  const auto& effects = rig_.model().effects;
+  if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return e->dissipative(); })) return;
   for (int j = 0; j < n; ++j) {
     s(j) = steps(j);
     force_residual(c, v + s, vdot, t);

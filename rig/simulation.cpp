@@ -167,9 +167,16 @@ const IntegratorStatistics& Integrator::statistics() const {
 }
 
 SensorSample read_sensors(const RigSystem& rig, const Configuration& c, const Velocity& v, double t) {
-  const Kinematics k = rig.kinematics(c, v, t);
-  const int n = rig.rods();
+  Kinematics k;
   SensorSample s;
+  read_sensors(rig, c, v, t, k, s);
+  return s;
+}
+
+void read_sensors(const RigSystem& rig, const Configuration& c, const Velocity& v, double t, Kinematics& k,
+                  SensorSample& s) {
+  rig.kinematics(c, v, t, k);
+  const int n = rig.rods();
   s.t = t;
   s.force.resize(n);
   s.alpha.resize(n);
@@ -183,7 +190,6 @@ SensorSample read_sensors(const RigSystem& rig, const Configuration& c, const Ve
     s.beta(i) = a.beta;
   }
   for (const auto& e : rig.model().effects) e->measure(s);
-  return s;
 }
 
 namespace {
@@ -239,11 +245,13 @@ VirtualHistory record(const RigSystem& rig, Stepper& integ, const Configuration&
   const double angle_step = sensors.encoder_bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, sensors.encoder_bits) : 0.0;
   Configuration c;
   Velocity v;
+  Kinematics kin;
+  SensorSample s;
   for (Eigen::Index k = 0; k < samples; ++k) {
     const double t = static_cast<double>(k) / fs;
     integ.advance_to(t_release + t);
     integ.state(c, v);
-    const SensorSample s = read_sensors(rig, c, v, t_release + t);
+    read_sensors(rig, c, v, t_release + t, kin, s);
     h.t(k) = t;
     for (int i = 0; i < n; ++i) {
       h.force(k, i) = quantize(s.force(i) + sensors.force_noise_n * normal(gen), sensors.force_resolution_n);

@@ -66,6 +66,9 @@ class Integrator {
 // weight along it), the encoders from the rod direction about the nominal
 // axes a_i; then the effects' measurement chain.
 SensorSample read_sensors(const RigSystem& rig, const Configuration& c, const Velocity& v, double t);
+// The same into `sample`, with `scratch` reused (no allocation once sized).
+void read_sensors(const RigSystem& rig, const Configuration& c, const Velocity& v, double t, Kinematics& scratch,
+                  SensorSample& sample);
 
 // One history of the release protocol: `push` (or the given initial
 // condition) from static equilibrium, then the free swing sampled at the
