@@ -21,17 +21,21 @@ Eigen::VectorXd to_vector(const Velocity& v) {
   return x;
 }
 
-Velocity to_velocity(const Eigen::VectorXd& x, Eigen::Index ne, Eigen::Index nf) {
-  Velocity v;
+void fill_velocity(const Eigen::VectorXd& x, Eigen::Index ne, Eigen::Index nf, Velocity& v) {
   v.V = x.segment<3>(0);
   v.w = x.segment<3>(3);
   v.eta = x.segment(6, ne);
   v.xf = x.segment(6 + ne, nf);
+}
+
+Velocity to_velocity(const Eigen::VectorXd& x, Eigen::Index ne, Eigen::Index nf) {
+  Velocity v;
+  fill_velocity(x, ne, nf, v);
   return v;
 }
 
-// -dQ/dv at (c, v) (frame damping, the friction laws' slopes, gyroscopic
-// terms), by central differences.
+// -dQ/dv at (c, v) (frame damping, the friction laws' slopes), by central
+// differences.
 Eigen::MatrixXd damping_tangent(const RigSystem& rig, const Configuration& c, const Eigen::VectorXd& v) {
   const int n = rig.coordinate_count();
   const Eigen::VectorXd steps = coordinate_steps(rig);
@@ -95,29 +99,15 @@ Eigen::VectorXd GeneralizedAlpha::accelerations(const Configuration& c, const Ei
   ++stats_.rhs_evaluations;
   const Velocity vel = to_velocity(v, rig_.elastic_modes(), rig_.fixed_dofs());
   ExternalLoad load;
-  const ExternalLoad* external = nullptr;
-  if (push_ && t <= push_->duration_s) {
-    load = push_->at(t);
-    external = &load;
-  }
-  return rig_.accelerations(vel, rig_.generalized_forces(c, vel, t, external));
+  return rig_.accelerations(vel, rig_.generalized_forces(c, vel, t, push_ ? push_->load_at(t, load) : nullptr));
 }
 
 void GeneralizedAlpha::force_residual(const Configuration& c, const Eigen::VectorXd& v, const Eigen::VectorXd& vdot,
                                       double t) {
   ++stats_.rhs_evaluations;
-  const Eigen::Index ne = rig_.elastic_modes(), nf = rig_.fixed_dofs();
-  velocity_.V = v.segment<3>(0);
-  velocity_.w = v.segment<3>(3);
-  velocity_.eta = v.segment(6, ne);
-  velocity_.xf = v.segment(6 + ne, nf);
+  fill_velocity(v, rig_.elastic_modes(), rig_.fixed_dofs(), velocity_);
   ExternalLoad load;
-  const ExternalLoad* external = nullptr;
-  if (push_ && t <= push_->duration_s) {
-    load = push_->at(t);
-    external = &load;
-  }
-  rig_.generalized_forces(c, velocity_, t, external, work_, Q_);
+  rig_.generalized_forces(c, velocity_, t, push_ ? push_->load_at(t, load) : nullptr, work_, Q_);
   rig_.subtract_gyroscopic(velocity_, Q_);
   residual_.noalias() = M_ * vdot;
   residual_ -= Q_;
@@ -146,12 +136,7 @@ void GeneralizedAlpha::refresh_tangents(const Configuration& c, const Eigen::Vec
   // the iteration matrix at swing speeds).
   const auto& effects = rig_.model().effects;
   if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return e->dissipative(); })) return;
-  for (int j = 0; j < n; ++j) {
-    s(j) = steps(j);
-    force_residual(c, v + s, vdot, t);
-    C_.col(j) = (residual_ - base) / steps(j);
-    s(j) = 0.0;
-  }
+  C_ = damping_tangent(rig_, c, v);
 }
 
 void GeneralizedAlpha::reset(double t, const Configuration& c, const Velocity& v, const Push* push) {

@@ -27,6 +27,12 @@ ExternalLoad Push::at(double t) const {
   return e;
 }
 
+const ExternalLoad* Push::load_at(double t, ExternalLoad& storage) const {
+  if (t > duration_s) return nullptr;
+  storage = at(t);
+  return &storage;
+}
+
 struct Integrator::Impl {
   const RigSystem& rig;
   SimulationOptions options;
@@ -63,11 +69,7 @@ int rig_rhs(sunrealtype t, N_Vector y, N_Vector ydot, void* user) {
   double* D = N_VGetArrayPointer(ydot);
   rig.unpack(Y, im->c, im->v);
   ExternalLoad load;
-  const ExternalLoad* external = nullptr;
-  if (im->push && t <= im->push->duration_s) {
-    load = im->push->at(t);
-    external = &load;
-  }
+  const ExternalLoad* external = im->push ? im->push->load_at(t, load) : nullptr;
   const Eigen::VectorXd Q = rig.generalized_forces(im->c, im->v, t, external);
   const Eigen::VectorXd a = rig.accelerations(im->v, Q);
   const int ne = rig.elastic_modes(), nf = rig.fixed_dofs();

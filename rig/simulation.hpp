@@ -37,6 +37,8 @@ struct Push {
   Vec3 force = Vec3::Zero();   // peak, G, at the CoG
   Vec3 moment = Vec3::Zero();  // peak, G
   ExternalLoad at(double t) const;
+  // at(t) into `storage`, or nullptr after the push (nothing to add).
+  const ExternalLoad* load_at(double t, ExternalLoad& storage) const;
 };
 
 class Integrator {
