@@ -16,6 +16,7 @@
 #include "apps/cli_support.hpp"
 #include "io/measurement_csv.hpp"
 #include "support/temp_files.hpp"
+#include "support/text_edits.hpp"
 
 namespace {
 
@@ -43,21 +44,6 @@ sensors:
 )";
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  if (pos == std::string::npos) return s;
-  return s.replace(pos, from.size(), to);
-}
-
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  int line = 1;
-  for (size_t i = 0; i < pos && pos != std::string::npos; ++i) line += text[i] == '\n';
-  return line;
-}
 
 // A rig file in its own folder.
 struct RigFile {
@@ -144,7 +130,7 @@ TEST(CliRig, CheckOfCompliantRodsGivesTheBounceAsF1) {
 }
 
 TEST(CliRig, CheckOfABadRigNamesFileLineAndKeyAndWritesNothing) {
-  const std::string text = replace(kRig, "mass: 100.0", "mass: -100.0");
+  const std::string text = replace_first(kRig, "mass: 100.0", "mass: -100.0");
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
@@ -243,7 +229,7 @@ TEST(CliRig, SimulateRefusesZeroHistories) {
 
 TEST(CliRig, SimulateOfARigWhoseNameCannotGoInTheFiles) {
   // Refused when read, not when the CSV writer meets the "# rig:" line.
-  const std::string text = replace(kRig, "name: small-rig", "name: \"small-rig \"");
+  const std::string text = replace_first(kRig, "name: small-rig", "name: \"small-rig \"");
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "meas";
   const CliRun r = run("simulate " + rig.file.string() + " --histories 1 --duration 1 --quiet --out " + out.string());

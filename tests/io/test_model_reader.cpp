@@ -3,9 +3,12 @@
 
 #include "io/input_error.hpp"
 #include "io/model_reader.hpp"
+#include "support/text_edits.hpp"
 
 namespace rigflex {
 namespace {
+
+using test::replace_first;
 
 const char* kValid = R"(name: frame
 materials:
@@ -37,12 +40,6 @@ io::InputError error_of(const std::string& text) {
   return io::InputError("", 0, "", "");
 }
 
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  return s.replace(pos, from.size(), to);
-}
-
 TEST(ModelReader, ReadsAValidModel) {
   const io::ModelFile f = io::parse_model(kValid, "frame.yaml");
   EXPECT_EQ(f.name, "frame");
@@ -60,60 +57,60 @@ TEST(ModelReader, MalformedYamlNamesTheLine) {
 }
 
 TEST(ModelReader, UnknownKeyNamesLineAndKey) {
-  const auto e = error_of(replace(kValid, "wall: 0.01}", "wall: 0.01, colour: red}"));
+  const auto e = error_of(replace_first(kValid, "wall: 0.01}", "wall: 0.01, colour: red}"));
   EXPECT_EQ(e.line(), 5);
   EXPECT_EQ(e.key(), "colour");
 }
 
 TEST(ModelReader, MissingKeyNamesLineAndKey) {
-  const auto e = error_of(replace(kValid, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
+  const auto e = error_of(replace_first(kValid, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
   EXPECT_EQ(e.line(), 3);
   EXPECT_EQ(e.key(), "rho");
 }
 
 TEST(ModelReader, WrongTypeNamesLineAndKey) {
-  const auto e = error_of(replace(kValid, "elements: 3", "elements: three"));
+  const auto e = error_of(replace_first(kValid, "elements: 3", "elements: three"));
   EXPECT_EQ(e.line(), 11);
   EXPECT_EQ(e.key(), "elements");
 }
 
 TEST(ModelReader, NonPositiveModulus) {
-  const auto e = error_of(replace(kValid, "E: 2.1e11", "E: -2.1e11"));
+  const auto e = error_of(replace_first(kValid, "E: 2.1e11", "E: -2.1e11"));
   EXPECT_EQ(e.line(), 3);
   EXPECT_EQ(e.key(), "E");
 }
 
 TEST(ModelReader, NonPositiveDensity) {
-  const auto e = error_of(replace(kValid, "rho: 7850", "rho: 0"));
+  const auto e = error_of(replace_first(kValid, "rho: 7850", "rho: 0"));
   EXPECT_EQ(e.key(), "rho");
 }
 
 TEST(ModelReader, NonPositiveSectionDimension) {
-  const auto e = error_of(replace(kValid, "wall: 0.01", "wall: 0"));
+  const auto e = error_of(replace_first(kValid, "wall: 0.01", "wall: 0"));
   EXPECT_EQ(e.line(), 5);
   EXPECT_EQ(e.key(), "wall");
 }
 
 TEST(ModelReader, DuplicateNodeId) {
-  const auto e = error_of(replace(kValid, "  - [2, 0, 0, 2]", "  - [1, 0, 0, 2]"));
+  const auto e = error_of(replace_first(kValid, "  - [2, 0, 0, 2]", "  - [1, 0, 0, 2]"));
   EXPECT_EQ(e.line(), 9);
   EXPECT_NE(std::string(e.what()).find("duplicate node id 1"), std::string::npos);
 }
 
 TEST(ModelReader, ElementNamingAMissingNode) {
-  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
+  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("node 9"), std::string::npos);
 }
 
 TEST(ModelReader, ZeroLengthElement) {
-  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
+  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("zero length"), std::string::npos);
 }
 
 TEST(ModelReader, UnknownSection) {
-  const auto e = error_of(replace(kValid, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
+  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_EQ(e.key(), "section");
 }
@@ -121,14 +118,14 @@ TEST(ModelReader, UnknownSection) {
 TEST(ModelReader, CouplingWhoseNodesCoincide) {
   std::string text = kValid;
   text += "couplings:\n  - {id: c, reference: 2, nodes: [3]}\n";
-  text = replace(text, "  - [2, 0, 0, 2]", "  - [2, 0, 0, 2]\n  - [3, 0, 0, 2.0]");
+  text = replace_first(text, "  - [2, 0, 0, 2]", "  - [2, 0, 0, 2]\n  - [3, 0, 0, 2.0]");
   const auto e = error_of(text);
   EXPECT_EQ(e.key(), "nodes");
   EXPECT_NE(std::string(e.what()).find("coincides"), std::string::npos);
 }
 
 TEST(ModelReader, PositionThatMatchesNoNode) {
-  const auto e = error_of(replace(kValid, "at: [3, 0, 2]", "at: [3, 0, 2.5]"));
+  const auto e = error_of(replace_first(kValid, "at: [3, 0, 2]", "at: [3, 0, 2.5]"));
   EXPECT_EQ(e.line(), 15);
   EXPECT_EQ(e.key(), "at");
 }

@@ -18,6 +18,7 @@
 #include <set>
 
 #include "support/temp_files.hpp"
+#include "support/text_edits.hpp"
 #include "io/input_error.hpp"
 #include "io/json_fields.hpp"
 #include "io/matrix_market.hpp"
@@ -26,6 +27,9 @@
 
 namespace rigflex {
 namespace {
+
+using test::replace_first;
+using test::line_of;
 
 namespace fs = std::filesystem;
 using reduction::ReducedFrame;
@@ -40,19 +44,6 @@ std::set<std::string> entries(const fs::path& dir) {
   if (!fs::exists(dir)) return out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) out.insert(fs::relative(e.path(), dir).string());
   return out;
-}
-
-// 1-based line of the first occurrence of `needle` in `text`.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto at = text.find(needle);
-  EXPECT_NE(at, std::string::npos) << needle;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
-}
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return at == std::string::npos ? s : s.replace(at, from.size(), to);
 }
 
 // Doubles that break lossy formatting: random bit patterns (any exponent,
@@ -683,7 +674,7 @@ TEST_F(ReducedImport, WrongValuesNameTheirLine) {
 }
 
 TEST_F(ReducedImport, MalformedJsonNamesTheLine) {
-  const std::string text = replace(json_, "\"mode_count\": 3,", "\"mode_count\": 3,,");
+  const std::string text = replace_first(json_, "\"mode_count\": 3,", "\"mode_count\": 3,,");
   const auto e = error_with_json(text);
   EXPECT_EQ(e.line(), line_of(text, "\"mode_count\""));
   EXPECT_NE(std::string(e.what()).find("malformed JSON"), std::string::npos);
@@ -715,7 +706,7 @@ TEST_F(ReducedImport, MalformedMatrixFilesNameFileAndLine) {
   EXPECT_NE(std::string(e.what()).find("is not a number"), std::string::npos) << e.what();
 
   const fs::path c = dir_.path() / "C.mtx";
-  write_text(c, replace(read_text(c), "array real general", "array real hermitian"));
+  write_text(c, replace_first(read_text(c), "array real general", "array real hermitian"));
   fs::copy_file(dir_.path() / "K.mtx", m, fs::copy_options::overwrite_existing);
   e = error();
   EXPECT_EQ(e.file(), c.string());

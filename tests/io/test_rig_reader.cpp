@@ -8,9 +8,13 @@
 #include "io/rig_reader.hpp"
 #include "rig/effect.hpp"
 #include "support/temp_files.hpp"
+#include "support/text_edits.hpp"
 
 namespace rigflex {
 namespace {
+
+using test::replace_first;
+using test::line_of;
 
 // Three vertical rods of 1 m at 0.4 m around P (|A - P - B| = L exactly), a
 // 100 kg body near the uniform disk of multifilar_rig() in
@@ -46,24 +50,6 @@ effects:
   load_cell_gain: {gain: [1.0, 1.01, 0.99]}
   air_drag: {cd_area: 0.5, enabled: false}
 )";
-
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const auto pos = s.find(from);
-  EXPECT_NE(pos, std::string::npos) << from;
-  if (pos == std::string::npos) return s;
-  return s.replace(pos, from.size(), to);
-}
-
-// 1-based line of the first occurrence of `needle` in `text` (0 if absent):
-// the line the error must name, found independently of the reader.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  if (pos == std::string::npos) return 0;
-  int line = 1;
-  for (size_t i = 0; i < pos; ++i) line += text[i] == '\n';
-  return line;
-}
 
 // Reads `text` from a real file (the error must name it) and returns the
 // error; fails the test if there is none.
@@ -121,7 +107,7 @@ TEST(RigReader, ReadsAValidRig) {
 
 TEST(RigReader, NameDefaultsToTheFileStem) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "bench rig .yaml", replace(kValid, "name: three-rod\n", ""));
+  test::write_text(dir.path() / "bench rig .yaml", replace_first(kValid, "name: three-rod\n", ""));
   // Blanks at the ends of the stem are trimmed: the name goes on a "# rig:" line.
   EXPECT_EQ(io::read_rig(dir.path() / "bench rig .yaml").name, "bench rig");
 }
@@ -142,7 +128,7 @@ TEST(RigReader, MissingFileNamesIt) {
 // are per-rod effect parameters with another count.
 
 TEST(RigReader, TwoRodsAreNotARig) {
-  const std::string two = replace(kValid,
+  const std::string two = replace_first(kValid,
                                   "    - upper: [-0.2, -0.3464, 1.0]\n      lower: [-0.2, -0.3464, 0.0]\n"
                                   "      length: 1.0\n      encoder_axis: [0, 1, 0]\n",
                                   "");
@@ -151,12 +137,12 @@ TEST(RigReader, TwoRodsAreNotARig) {
 }
 
 TEST(RigReader, EncoderOffsetWithAnotherRodCount) {
-  const std::string bad = replace(kValid, "alpha: [0.001, 0.002, 0.003]", "alpha: [0.001, 0.002]");
+  const std::string bad = replace_first(kValid, "alpha: [0.001, 0.002, 0.003]", "alpha: [0.001, 0.002]");
   expect_error(bad, "  encoder_offset:", "effects.encoder_offset.alpha", "list of 3 numbers");
 }
 
 TEST(RigReader, LoadCellGainWithAnotherRodCount) {
-  const std::string bad = replace(kValid, "gain: [1.0, 1.01, 0.99]", "gain: [1.0, 1.01, 0.99, 1.0]");
+  const std::string bad = replace_first(kValid, "gain: [1.0, 1.01, 0.99]", "gain: [1.0, 1.01, 0.99, 1.0]");
   expect_error(bad, "  load_cell_gain:", "effects.load_cell_gain.gain", "list of 3 numbers");
 }
 
@@ -174,45 +160,45 @@ TEST(RigReader, JointPositionErrorWithAnotherRodCount) {
 // --- geometry
 
 TEST(RigReader, NonUnitEncoderAxis) {
-  const std::string bad = replace(kValid, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
+  const std::string bad = replace_first(kValid, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
   expect_error(bad, "encoder_axis: [-1, 1, 0]", "geometry.rods[2].encoder_axis", "unit vector");
 }
 
 TEST(RigReader, NonHorizontalEncoderAxis) {
   // Unit, but tilted out of the horizontal plane.
-  const std::string bad = replace(kValid, "encoder_axis: [0, 1, 0]", "encoder_axis: [0, 0.6, 0.8]");
+  const std::string bad = replace_first(kValid, "encoder_axis: [0, 1, 0]", "encoder_axis: [0, 0.6, 0.8]");
   expect_error(bad, "encoder_axis: [0, 0.6, 0.8]", "geometry.rods[3].encoder_axis", "horizontal");
 }
 
 TEST(RigReader, RodThatCannotReach) {
   // |A - P - B| = 1 m at the nominal pose; 1.2 m is 20 % off, beyond the 5 % allowed.
-  const std::string bad = replace(kValid, "      length: 1.0\n      encoder_axis: [-0.5",
+  const std::string bad = replace_first(kValid, "      length: 1.0\n      encoder_axis: [-0.5",
                                   "      length: 1.2\n      encoder_axis: [-0.5");
   expect_error(bad, "length: 1.2", "geometry.rods[2].length", "cannot reach");
 }
 
 TEST(RigReader, RodGeometryKeysNameTheRod) {
-  const std::string bad = replace(kValid, "lower: [-0.2, -0.3464, 0.0]", "lower: [-0.2, -0.3464]");
+  const std::string bad = replace_first(kValid, "lower: [-0.2, -0.3464, 0.0]", "lower: [-0.2, -0.3464]");
   expect_error(bad, "lower: [-0.2, -0.3464]", "geometry.rods[3].lower", "3 numbers");
 }
 
 // --- body
 
 TEST(RigReader, NegativeMass) {
-  const std::string bad = replace(kValid, "mass: 100.0", "mass: -100.0");
+  const std::string bad = replace_first(kValid, "mass: 100.0", "mass: -100.0");
   expect_error(bad, "mass: -100.0", "body.mass", "must be positive");
 }
 
 TEST(RigReader, InertiaNotPositiveDefinite) {
   // Jxy = 7 > Jxx = Jyy = 6.25: principal moments -0.75, 12 and 13.25.
-  const std::string bad = replace(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
+  const std::string bad = replace_first(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
                                   "inertia: [6.25, 6.25, 12.0, 7, 0, 0]");
   expect_error(bad, "inertia: [6.25, 6.25, 12.0, 7, 0, 0]", "body.inertia", "positive definite");
 }
 
 TEST(RigReader, InertiaNoBodyCanHave) {
   // Positive definite, but Jzz > Jxx + Jyy: no mass distribution has it.
-  const std::string bad = replace(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
+  const std::string bad = replace_first(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
                                   "inertia: [1, 1, 5, 0, 0, 0]");
   expect_error(bad, "inertia: [1, 1, 5, 0, 0, 0]", "body.inertia", "triangle inequality");
 }
@@ -220,12 +206,12 @@ TEST(RigReader, InertiaNoBodyCanHave) {
 // --- keys and effects
 
 TEST(RigReader, UnknownTopLevelKey) {
-  const std::string bad = replace(kValid, "body:\n", "colour: red\nbody:\n");
+  const std::string bad = replace_first(kValid, "body:\n", "colour: red\nbody:\n");
   expect_error(bad, "colour: red", "colour", "unknown key");
 }
 
 TEST(RigReader, UnknownKeyInASection) {
-  const std::string bad = replace(kValid, "load_cell: {noise: 1.0}", "load_cell: {noise: 1.0, drift: 2}");
+  const std::string bad = replace_first(kValid, "load_cell: {noise: 1.0}", "load_cell: {noise: 1.0, drift: 2}");
   expect_error(bad, "load_cell: {noise", "sensors.load_cell.drift", "unknown key");
 }
 
@@ -268,24 +254,24 @@ TEST(RigReader, FrameModelThatDoesNotExist) {
 // --- the rig's name goes on a "# rig: name" line of every measurement file
 
 TEST(RigReader, NameWithALineBreak) {
-  const std::string bad = replace(kValid, "name: three-rod", "name: \"three\\nrod\"");
+  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"three\\nrod\"");
   expect_error(bad, "name:", "name", "line break");
 }
 
 TEST(RigReader, NameWithAControlCharacter) {
-  const std::string bad = replace(kValid, "name: three-rod", "name: \"three\\trod\"");
+  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"three\\trod\"");
   expect_error(bad, "name:", "name", "control characters");
 }
 
 TEST(RigReader, NameWithBlanksAtTheEnds) {
   for (const char* name : {"\" three-rod\"", "\"three-rod \""}) {
-    const std::string bad = replace(kValid, "name: three-rod", std::string("name: ") + name);
+    const std::string bad = replace_first(kValid, "name: three-rod", std::string("name: ") + name);
     expect_error(bad, "name:", "name", "blank");
   }
 }
 
 TEST(RigReader, EmptyName) {
-  const std::string bad = replace(kValid, "name: three-rod", "name: \"\"");
+  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"\"");
   expect_error(bad, "name:", "name", "empty");
 }
 
