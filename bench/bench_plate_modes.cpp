@@ -63,6 +63,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_cli.hpp"
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
@@ -81,11 +82,8 @@ using bench::divisions_for;
 using bench::loadavg;
 using bench::reset_peak_rss;
 using bench::status_kb;
-using clock_type = std::chrono::steady_clock;
-
-double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
-}
+using bench::clock_type;
+using bench::seconds_since;
 
 struct Options {
   std::vector<long> sizes{10000, 100000};
@@ -110,10 +108,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return bench::option_value(argc, argv, i); };
     if (a == "--sizes") {
       o.sizes = bench::parse_sizes(value());
     } else if (a == "--modes") o.modes = std::stoi(value());

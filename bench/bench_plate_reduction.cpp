@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_cli.hpp"
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "reduction/component_modes.hpp"
@@ -38,7 +39,8 @@
 namespace {
 
 using namespace rigflex;
-using clock_type = std::chrono::steady_clock;
+using bench::clock_type;
+using bench::seconds_since;
 
 struct Options {
   std::vector<long> sizes{10000, 100000};
@@ -50,10 +52,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return bench::option_value(argc, argv, i); };
     if (a == "--sizes") {
       o.sizes = bench::parse_sizes(value());
     } else if (a == "--modes") {
@@ -93,7 +92,7 @@ Timed measure(int repeat, F f) {
     const long rss0 = bench::status_kb("VmRSS:");
     const auto t0 = clock_type::now();
     f();
-    t.seconds = std::min(t.seconds, std::chrono::duration<double>(clock_type::now() - t0).count());
+    t.seconds = std::min(t.seconds, seconds_since(t0));
     t.peak_mb = std::max(t.peak_mb, (bench::status_kb("VmHWM:") - rss0) / 1024.0);
   }
   return t;

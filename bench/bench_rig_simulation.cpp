@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_cli.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/equilibrium.hpp"
 #include "rig/linearization.hpp"
@@ -37,7 +38,8 @@
 namespace {
 
 using namespace rigflex;
-using clock_type = std::chrono::steady_clock;
+using bench::clock_type;
+using bench::seconds_since;
 
 struct Options {
   std::vector<std::string> rigs;
@@ -50,10 +52,7 @@ Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return bench::option_value(argc, argv, i); };
     if (a == "--duration") {
       o.duration = std::stod(value());
     } else if (a == "--histories") {
@@ -68,10 +67,6 @@ Options parse(int argc, char** argv) {
   }
   if (o.rigs.empty()) throw std::invalid_argument("usage: bench_rig_simulation RIG.yaml [...] [--duration S]");
   return o;
-}
-
-double seconds_since(clock_type::time_point t0) {
-  return std::chrono::duration<double>(clock_type::now() - t0).count();
 }
 
 double rhs_microseconds(const rig::RigSystem& rig, const rig::Configuration& c) {
