@@ -23,6 +23,7 @@ struct TimeHistory {
   Eigen::MatrixXd force;  // samples x n, columns F1..Fn (N, tension positive)
   Eigen::MatrixXd alpha;  // samples x n, alpha1..alphan (rad)
   Eigen::MatrixXd beta;   // samples x n, beta1..betan (rad)
+  int header_line = 0;    // 1-based line of the header in the file read (sample k is on line header_line + 1 + k)
 
   int rods() const;     // n
   int samples() const;  // rows of t
@@ -59,5 +60,15 @@ struct MeasurementSet {
 // files skipped), in natural order (h2 before h10); at least one. Each is read
 // with expected_rods, and all must have the rod count of the first.
 MeasurementSet read_measurement_set(const std::filesystem::path& folder, int expected_rods = 0);
+
+// The sets that paths name, as `rigflex identify` takes them: a folder with
+// .csv files is one set; a folder without any holds one set per subfolder
+// (natural order, hidden ones skipped); files given directly form one set
+// together. `names[i]` names set i (its folder, or "files").
+struct MeasurementSets {
+  std::vector<std::string> names;
+  std::vector<MeasurementSet> sets;
+};
+MeasurementSets read_measurement_sets(const std::vector<std::filesystem::path>& paths, int expected_rods = 0);
 
 }  // namespace rigflex::io

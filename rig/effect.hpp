@@ -87,6 +87,9 @@ class Effect {
   virtual void build(RigAssembly&) const {}
   virtual void add_loads(const Kinematics&, Loads&) const {}
   virtual void measure(SensorSample&) const {}
+  // The inverse of measure: what the identifier applies to recorded samples
+  // when the rig model knows the measurement chain (calibrated offsets, gains).
+  virtual void unmeasure(SensorSample&) const {}
   virtual bool dissipative() const { return false; }
 };
 

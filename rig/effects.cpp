@@ -106,6 +106,13 @@ void EncoderOffset::measure(SensorSample& s) const {
   }
 }
 
+void EncoderOffset::unmeasure(SensorSample& s) const {
+  for (size_t i = 0; i < alpha_.size(); ++i) {
+    s.alpha(i) -= alpha_[i];
+    s.beta(i) -= beta_[i];
+  }
+}
+
 void RodLengthError::validate(int rods) const {
   require_count(delta_, rods, "effects.rod_length_error.delta");
   require_finite(delta_, "effects.rod_length_error.delta");
@@ -136,6 +143,10 @@ void LoadCellGain::validate(int rods) const {
 
 void LoadCellGain::measure(SensorSample& s) const {
   for (size_t i = 0; i < gain_.size(); ++i) s.force(i) = gain_[i] * s.force(i) + offset_[i];
+}
+
+void LoadCellGain::unmeasure(SensorSample& s) const {
+  for (size_t i = 0; i < gain_.size(); ++i) s.force(i) = (s.force(i) - offset_[i]) / gain_[i];
 }
 
 const std::vector<const char*>& effect_names() {

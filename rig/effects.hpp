@@ -102,6 +102,7 @@ class EncoderOffset : public Effect {
   const char* name() const override { return "encoder_offset"; }
   void validate(int rods) const override;
   void measure(SensorSample& s) const override;
+  void unmeasure(SensorSample& s) const override;
 
  private:
   std::vector<double> alpha_, beta_;
@@ -138,6 +139,7 @@ class LoadCellGain : public Effect {
   const char* name() const override { return "load_cell_gain"; }
   void validate(int rods) const override;
   void measure(SensorSample& s) const override;
+  void unmeasure(SensorSample& s) const override;
 
  private:
   std::vector<double> gain_, offset_;

@@ -12,9 +12,14 @@ Eigen::Matrix3d rotation_about(const Eigen::Vector3d& axis, double angle) {
 
 Eigen::Vector3d second_axis(const Eigen::Vector3d& a) { return Eigen::Vector3d::UnitZ().cross(a); }
 
+// R(b, beta) (0, 0, -1) = -cos(beta) z - sin(beta) a (b = z x a, a horizontal),
+// then R(a, alpha) turns z into cos(alpha) z - sin(alpha) b and leaves a:
+// the spec's product of rotations in closed form (the identifier evaluates
+// it for every sample of every rod).
 Eigen::Vector3d rod_direction(const Eigen::Vector3d& a, const EncoderAngles& angles) {
-  return rotation_about(a, angles.alpha) * rotation_about(second_axis(a), angles.beta) *
-         Eigen::Vector3d(0.0, 0.0, -1.0);
+  const double ca = std::cos(angles.alpha), sa = std::sin(angles.alpha);
+  const double cb = std::cos(angles.beta), sb = std::sin(angles.beta);
+  return cb * (sa * second_axis(a) - ca * Eigen::Vector3d::UnitZ()) - sb * a;
 }
 
 EncoderAngles encoder_angles(const Eigen::Vector3d& a, const Eigen::Vector3d& u) {

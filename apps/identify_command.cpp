@@ -1,0 +1,194 @@
+// rigflex identify RIG.yaml DATA... [--algorithm rigid|flexible|both]
+//   [--reduced DIR]... [--static-cog X,Y[,Z]] [--tare FILE] [--reference FILE]
+//   [--mass KG] [--window S] [--degree N] [--threads N] --out DIR:
+// mass properties from measured free swings, one least-squares solve per
+// measurement set, statistics over the sets, DIR/identification.json.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "apps/commands.hpp"
+#include "io/identification_report.hpp"
+#include "io/atomic_file.hpp"
+#include "io/mass_record.hpp"
+#include "io/measurement_csv.hpp"
+#include "io/reduced_export.hpp"
+#include "io/reduced_layout.hpp"
+#include "io/rig_reader.hpp"
+#include "rig/effects.hpp"
+#include "rig/frame_models.hpp"
+#include "rig/identification.hpp"
+#include "rig/parallel_for.hpp"
+
+namespace rigflex::app {
+namespace {
+
+struct IdentifyArgs {
+  std::string rig;
+  std::vector<std::string> data;
+  std::string algorithm = "rigid";
+  std::vector<std::string> reduced;
+  std::vector<double> static_cog;
+  std::string tare, reference;
+  double mass = 0;
+  double window = 0, degree = 0;
+  int threads = 0;
+  std::string out;
+  bool quiet = false;
+};
+
+// A reduced frame from `rigflex reduce` replaces the rig file's model of the
+// frame it fits: grounded -> fixed frame, free-free -> carrying frame.
+void use_reduced(rig::RigModel& model, const std::filesystem::path& dir) {
+  const reduction::ReducedFrame frame = io::read_reduced_frame(dir);
+  const std::string file = (dir / io::reduced_layout::kJsonFile).string();
+  std::shared_ptr<rig::Effect> effect;
+  try {
+    if (frame.support == reduction::FrameSupport::grounded) {
+      effect = std::make_shared<rig::FixedFrameFlexibility>(rig::fixed_frame_model(frame, model.geometry));
+    } else {
+      effect = std::make_shared<rig::CarryingFrameFlexibility>(rig::carrying_frame_model(frame, model.geometry));
+    }
+  } catch (const std::invalid_argument& e) {
+    throw io::InputError(file, 0, "interface_nodes", std::string("does not match the rig's joints: ") + e.what());
+  }
+  std::erase_if(model.effects, [&](const auto& e) { return std::string(e->name()) == effect->name(); });
+  model.effects.push_back(effect);
+}
+
+rig::VirtualHistory to_record(const io::TimeHistory& h) {
+  rig::VirtualHistory r;
+  r.t = h.t;
+  r.force = h.force;
+  r.alpha = h.alpha;
+  r.beta = h.beta;
+  return r;
+}
+
+rig::IdentificationOptions options_from(const IdentifyArgs& a) {
+  rig::IdentificationOptions o;
+  if (a.window > 0) o.differentiation.window_s = a.window;
+  if (a.degree > 0) o.differentiation.degree = static_cast<int>(a.degree);
+  if (a.static_cog.size() == 2) {
+    o.cog_constraint = rig::CogConstraint::in_plane;
+    o.imposed_cog = rig::Vec3(a.static_cog[0], a.static_cog[1], 0.0);
+  } else if (a.static_cog.size() == 3) {
+    o.cog_constraint = rig::CogConstraint::full;
+    o.imposed_cog = rig::Vec3(a.static_cog[0], a.static_cog[1], a.static_cog[2]);
+  } else if (!a.static_cog.empty()) {
+    throw std::invalid_argument("--static-cog: expected X,Y or X,Y,Z in metres");
+  }
+  o.validate();
+  return o;
+}
+
+// Identifies every set; an unusable record or an unobservable set is bad input named by its file.
+std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig& rig, const io::MeasurementSets& data,
+                                                    const rig::IdentificationOptions& options, int threads,
+                                                    bool quiet) {
+  const int n = static_cast<int>(data.sets.size());
+  std::vector<rig::IdentificationResult> out(static_cast<size_t>(n));
+  std::mutex progress;
+  int done = 0;
+  rig::parallel_for(n, threads, [&](int k) {
+    const io::MeasurementSet& set = data.sets[static_cast<size_t>(k)];
+    std::vector<rig::VirtualHistory> records;
+    for (const auto& h : set.histories) records.push_back(to_record(h));
+    std::vector<const rig::VirtualHistory*> ptrs;
+    for (const auto& r : records) ptrs.push_back(&r);
+    try {
+      out[static_cast<size_t>(k)] = rig::identify(rig, ptrs, options);
+    } catch (const rig::RecordError& e) {
+      const auto i = static_cast<size_t>(std::max(0, e.history()));
+      const io::TimeHistory& h = set.histories[i];
+      const int line = e.sample() >= 0 ? h.header_line + 1 + static_cast<int>(e.sample()) : 0;
+      throw io::InputError(set.files[i].string(), line, e.channel(), e.what());
+    }
+    if (!out[static_cast<size_t>(k)].observable) {
+      throw io::InputError(data.names[static_cast<size_t>(k)], 0, "", out[static_cast<size_t>(k)].message);
+    }
+    if (!quiet) {
+      std::lock_guard<std::mutex> lock(progress);
+      std::fprintf(stderr, "identify (%s): set %d/%d done\n", rig::to_string(rig.algorithm), ++done, n);
+    }
+  });
+  return out;
+}
+
+int run(const IdentifyArgs& a) {
+  io::RigReadOptions ro;
+  if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "identify: frame reduction: %s\n", s.c_str()); };
+  rig::RigModel model = io::read_rig(a.rig, ro);
+  for (const auto& dir : a.reduced) use_reduced(model, dir);
+  if (a.mass > 0) model.body.mass = a.mass;
+  const rig::IdentificationOptions options = options_from(a);
+
+  std::vector<std::filesystem::path> paths(a.data.begin(), a.data.end());
+  const io::MeasurementSets data = io::read_measurement_sets(paths, model.geometry.rod_count());
+  if (!a.quiet) std::fprintf(stderr, "identify: %zu set(s) read\n", data.sets.size());
+
+  io::IdentificationReport report;
+  report.rig = model.name;
+  report.set_names = data.names;
+  for (const auto& s : data.sets) {
+    std::vector<std::string> files;
+    for (const auto& f : s.files) files.push_back(f.string());
+    report.set_files.push_back(files);
+  }
+  if (!a.tare.empty()) report.tare = io::read_mass_record(a.tare);
+  if (!a.reference.empty()) report.reference = io::read_mass_record(a.reference);
+  if (a.static_cog.size() == 3) report.static_cog_height = a.static_cog[2];
+  report.options = options;
+
+  std::vector<rig::IdentificationAlgorithm> algorithms;
+  if (a.algorithm != "flexible") algorithms.push_back(rig::IdentificationAlgorithm::rigid);
+  if (a.algorithm != "rigid") algorithms.push_back(rig::IdentificationAlgorithm::flexible);
+  for (const auto alg : algorithms) {
+    const rig::IdentificationRig idr = rig::identification_rig(model, alg);
+    if (alg == rig::IdentificationAlgorithm::flexible && !idr.flexible() && !a.quiet) {
+      std::fprintf(stderr,
+                   "identify: warning: the rig model has no flexible frame or rod (no fixed_frame_flexibility, "
+                   "carrying_frame_flexibility, rod_compliance, nor --reduced): the flexible algorithm equals the "
+                   "rigid one\n");
+    }
+    report.add(alg, identify_all(idr, data, options, a.threads, a.quiet));
+  }
+  std::fputs(report.table().c_str(), stdout);
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out);
+  io::FileBatch batch;
+  batch.add_text(out / "identification.json", report.json().dump(2) + "\n");
+  batch.commit();
+  std::printf("wrote %s/identification.json\n", a.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_identify_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("identify", "Identify mass properties from measured free swings");
+  auto a = std::make_shared<IdentifyArgs>();
+  cmd->add_option("rig", a->rig, "rig YAML file")->required();
+  cmd->add_option("data", a->data, "measurement files or set folders (a folder of set folders: one set each)")
+      ->required();
+  cmd->add_option("--algorithm", a->algorithm, "rigid, flexible or both")
+      ->check(CLI::IsMember({"rigid", "flexible", "both"}));
+  cmd->add_option("--reduced", a->reduced, "folder written by `rigflex reduce` (fixed or carrying frame)");
+  cmd->add_option("--static-cog", a->static_cog, "CoG from the static procedure: X,Y (in plane) or X,Y,Z [m]")
+      ->delimiter(',')
+      ->expected(2, 3);
+  cmd->add_option("--tare", a->tare, "mass properties record of the carrying frame alone (subtracted)");
+  cmd->add_option("--reference", a->reference, "reference mass properties record (errors, accuracy shares)");
+  cmd->add_option("--mass", a->mass, "mass from static weighing [kg] (default: the rig file's body)")->check(positive());
+  cmd->add_option("--window", a->window, "Savitzky-Golay window [s]")->check(positive());
+  cmd->add_option("--degree", a->degree, "Savitzky-Golay polynomial degree")->check(positive());
+  cmd->add_option("--threads", a->threads, "sets identified in parallel (0: all cores)");
+  cmd->add_option("--out", a->out, "output folder for identification.json")->required();
+  cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
+  cmd->callback([a, &exit_code] { exit_code = run(*a); });
+}
+
+}  // namespace rigflex::app
