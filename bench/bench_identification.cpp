@@ -171,8 +171,9 @@ int main(int argc, char** argv) {
     rig::MeasurementOptions mo;
     mo.sets = o.sets;
     const Sets sets = rig::simulate_measurement(rig, mo);
-    std::printf("## %s%s: %d sets x 6 histories x 15 s, noise on\n\n", model.name.c_str(), o.stiff ? " (stiff)" : "",
-                o.sets);
+    std::printf("## %s%s: %d sets x 6 histories x 15 s, load-cell noise %g N, encoder noise %g rad, %d bits\n\n",
+                model.name.c_str(), o.stiff ? " (stiff)" : "", o.sets, model.sensors.force_noise_n,
+                model.sensors.angle_noise_rad, model.sensors.encoder_bits);
     accuracy(model, sets);
 
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

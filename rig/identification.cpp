@@ -65,15 +65,9 @@ std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const
   const double h = median_step(motion.t);
   const SavitzkyGolayKernels kern = savitzky_golay_kernels(options.differentiation, h);
   const int hw = kern.half_width;
-  const Eigen::Index N = 2 * hw + 1;
   const int stride = std::max(1, static_cast<int>(std::lround(1.0 / (h * options.equation_rate_hz))));
   const Eigen::Index nj = 3 * n;
 
-  // Channels: joints (3n), force (3), moment about the origin (3).
-  Eigen::MatrixXd ch(nj + 6, S);
-  ch.topRows(nj) = motion.joints;
-  ch.middleRows(nj, 3) = motion.force;
-  ch.bottomRows(3) = motion.moment;
   // Stretches of uniform sampling: a step more than 1 % off the median (a
   // dropped sample, a logger hiccup) ends one.
   std::vector<Eigen::Index> segment_start(static_cast<size_t>(S));
@@ -90,10 +84,16 @@ std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const
   Eigen::MatrixXd G(nj, 6);
   for (Eigen::Index k = hw; k + hw < S; k += stride) {
     if (segment_start[static_cast<size_t>(k + hw)] > k - hw) continue;
-    const auto window = ch.middleCols(k - hw, N);
-    x0.noalias() = window * kern.value;
-    x1.noalias() = window.topRows(nj) * kern.first;
-    x2.noalias() = window.topRows(nj) * kern.second;
+    for (Eigen::Index c = 0; c < nj; ++c) {
+      const SavitzkyGolayEstimate est = savitzky_golay_at(kern, &motion.joints(k, c));
+      x0(c) = est.value;
+      x1(c) = est.first;
+      x2(c) = est.second;
+    }
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      x0(nj + c) = savitzky_golay_value_at(kern, &motion.force(k, c));
+      x0(nj + 3 + c) = savitzky_golay_value_at(kern, &motion.moment(k, c));
+    }
     for (int i = 0; i < n; ++i) Bs.col(i) = x0.segment<3>(3 * i);
     const PoseFit pose = fit_pose(b, Bs);
     // Encoders and lengths that no rigid carrying frame can satisfy (angles

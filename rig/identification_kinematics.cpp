@@ -33,9 +33,9 @@ MotionSeries motion_series(const IdentificationRig& rig, const VirtualHistory& r
 
   MotionSeries out;
   out.t = record.t;
-  out.joints.resize(3 * n, S);
-  out.force.resize(3, S);
-  out.moment.resize(3, S);
+  out.joints.resize(S, 3 * n);
+  out.force.resize(S, 3);
+  out.moment.resize(S, 3);
 
   JointPoints b_nominal = JointPoints::Zero(3, n), B = JointPoints::Zero(3, n);
   for (int i = 0; i < n; ++i) b_nominal.col(i) = rig.geometry.rods[i].lower;
@@ -83,8 +83,8 @@ MotionSeries motion_series(const IdentificationRig& rig, const VirtualHistory& r
       F += f.col(i);
       M += Vec3(B.col(i)).cross(Vec3(f.col(i)));
     }
-    out.force.col(k) = F;
-    out.moment.col(k) = M;
+    out.force.row(k) = F.transpose();
+    out.moment.row(k) = M.transpose();
 
     if (rig.carrying_frame) {
       // The joint deformation needs the loads in frame c, so the pose of the
@@ -100,7 +100,7 @@ MotionSeries motion_series(const IdentificationRig& rig, const VirtualHistory& r
       d.noalias() = cf.psi * eta;
       for (int i = 0; i < n; ++i) B.col(i) -= pose.R * d.segment<3>(3 * i);
     }
-    for (int i = 0; i < n; ++i) out.joints.block<3, 1>(3 * i, k) = B.col(i);
+    for (int i = 0; i < n; ++i) out.joints.block<1, 3>(k, 3 * i) = B.col(i).transpose();
   }
   return out;
 }

@@ -23,14 +23,15 @@ namespace rigflex::rig {
 // accelerations) only at the equation times (identification.cpp).
 struct MotionSeries {
   Eigen::VectorXd t;
-  // Lower joint centres in G, 3 rows per rod, with the carrying frame's own
-  // deformation taken out (R d_i subtracted), so that they move rigidly.
+  // Rows are samples (each channel contiguous in time, as the filters read it).
+  // Lower joint centres in G, 3 columns per rod, with the carrying frame's
+  // own deformation taken out (R d_i subtracted), so that they move rigidly.
   Eigen::MatrixXd joints;
   // Resultant load of the rods on the identified system (G), and its moment
   // about the origin of G, the forces acting at the (deformed) joints. The
   // identified system is the record plus the rods' moving thirds (m_i / 3 at
   // B_i), whose weight is taken out of the loads here.
-  Eigen::Matrix3Xd force, moment;
+  Eigen::MatrixX3d force, moment;
 };
 
 // A record that does not fit the rig: which sample (0-based, -1 for the

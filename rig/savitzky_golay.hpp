@@ -43,4 +43,37 @@ double savitzky_golay_gain(const SavitzkyGolayKernels& k, int derivative, double
 // Standard deviation of the estimate for white noise of standard deviation 1: sqrt(sum w^2).
 double savitzky_golay_noise_gain(const SavitzkyGolayKernels& k, int derivative);
 
+// The three estimates at the sample x[0] of a contiguous signal (x[-m] ..
+// x[m] must exist). The value and second-derivative kernels are even and the
+// first-derivative kernel odd, so the window is folded once into sums and
+// differences of mirrored samples: half the multiplications of three dot
+// products, in one pass (the identifier evaluates this per channel at every
+// equation time).
+struct SavitzkyGolayEstimate {
+  double value = 0, first = 0, second = 0;
+};
+inline SavitzkyGolayEstimate savitzky_golay_at(const SavitzkyGolayKernels& k, const double* x) {
+  const int m = k.half_width;
+  const double* w0 = k.value.data() + m;
+  const double* w1 = k.first.data() + m;
+  const double* w2 = k.second.data() + m;
+  SavitzkyGolayEstimate e{w0[0] * x[0], 0.0, w2[0] * x[0]};
+  for (int j = 1; j <= m; ++j) {
+    const double sum = x[j] + x[-j], diff = x[j] - x[-j];
+    e.value += w0[j] * sum;
+    e.first += w1[j] * diff;
+    e.second += w2[j] * sum;
+  }
+  return e;
+}
+
+// The value alone (smoothing).
+inline double savitzky_golay_value_at(const SavitzkyGolayKernels& k, const double* x) {
+  const int m = k.half_width;
+  const double* w0 = k.value.data() + m;
+  double v = w0[0] * x[0];
+  for (int j = 1; j <= m; ++j) v += w0[j] * (x[j] + x[-j]);
+  return v;
+}
+
 }  // namespace rigflex::rig

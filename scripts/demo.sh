@@ -2,7 +2,8 @@
 # Installs what is missing, builds, and runs the main job on the bundled
 # examples: the modes of the rig's fixed frame, written for ParaView, and
 # the fixed and carrying frames reduced onto their joints, then the large
-# rig's design check and a virtual measurement (6 histories).
+# rig's design check, a virtual measurement (6 histories) and its
+# identification by the rigid and the flexible algorithm.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -14,3 +15,5 @@ bash scripts/build.sh
   --method craig-bampton --modes 12 --out out/carrying-frame-reduced
 ./build/rigflex check examples/large-rig/rig.yaml --out out/large-rig-check
 ./build/rigflex simulate examples/large-rig/rig.yaml --sets 1 --histories 6 --duration 15 --seed 1 --out out/large-rig-measurement
+./build/rigflex identify examples/large-rig/rig.yaml out/large-rig-measurement --algorithm both \
+  --out out/large-rig-identification

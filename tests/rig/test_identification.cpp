@@ -113,9 +113,9 @@ rig::MotionSeries exact_series(const rig::IdentificationRig& rig, const Truth& b
   const auto S = static_cast<Eigen::Index>(std::lround(duration * fs)) + 1;
   rig::MotionSeries s;
   s.t.resize(S);
-  s.joints.resize(9, S);
-  s.force.resize(3, S);
-  s.moment.resize(3, S);
+  s.joints.resize(S, 9);
+  s.force.resize(S, 3);
+  s.moment.resize(S, 3);
   const Vec3 g(0, 0, -rig.geometry.gravity);
   for (Eigen::Index k = 0; k < S; ++k) {
     const double t = t0 + static_cast<double>(k) / fs;
@@ -126,9 +126,9 @@ rig::MotionSeries exact_series(const rig::IdentificationRig& rig, const Truth& b
     const Vec3 gc = R.transpose() * g;
     const Vec3 F = body.m * (a + dw.cross(body.c) + w.cross(w.cross(body.c))) - body.m * gc;
     const Vec3 M = body.J_P * dw + w.cross(body.J_P * w) + body.m * body.c.cross(a - gc);
-    for (int i = 0; i < 3; ++i) s.joints.block<3, 1>(3 * i, k) = r + R * rig.geometry.rods[i].lower;
-    s.force.col(k) = R * F;
-    s.moment.col(k) = r.cross(R * F) + R * M;
+    for (int i = 0; i < 3; ++i) s.joints.block<1, 3>(k, 3 * i) = (r + R * rig.geometry.rods[i].lower).transpose();
+    s.force.row(k) = (R * F).transpose();
+    s.moment.row(k) = (r.cross(R * F) + R * M).transpose();
   }
   return s;
 }
@@ -230,9 +230,11 @@ TEST(IdentificationExact, StillRecordIsNotObservableAndNamesTheParameters) {
   const auto rig = three_rod_rig(body.m);
   rig::MotionSeries s = exact_series(rig, body, AnalyticMotion{}, 500, 3);
   for (Eigen::Index k = 0; k < s.t.size(); ++k) {
-    for (int i = 0; i < 3; ++i) s.joints.block<3, 1>(3 * i, k) = Vec3(0, 0, 2.55) + rig.geometry.rods[i].lower;
-    s.force.col(k) = Vec3(0, 0, body.m * 9.80665);
-    s.moment.col(k) = (Vec3(0, 0, 2.55) + body.c).cross(Vec3(0, 0, -body.m * 9.80665)) * -1.0;
+    for (int i = 0; i < 3; ++i) {
+      s.joints.block<1, 3>(k, 3 * i) = (Vec3(0, 0, 2.55) + rig.geometry.rods[i].lower).transpose();
+    }
+    s.force.row(k) = Vec3(0, 0, body.m * 9.80665).transpose();
+    s.moment.row(k) = -(Vec3(0, 0, 2.55) + body.c).cross(Vec3(0, 0, -body.m * 9.80665)).transpose();
   }
   const auto samples = rig::equation_samples(rig, s, rig::IdentificationOptions{});
   const auto r = rig::solve_mass_properties(samples, body.m, {}, 9.80665, 1.5, rig::IdentificationOptions{});
@@ -264,9 +266,9 @@ TEST(IdentificationExact, DroppedSampleSplitsTheRecordWithoutBias) {
   const Eigen::Index drop = 2345, S = s.t.size();
   auto remove = [&](auto& m) {
     auto copy = m;
-    m.resize(m.rows(), S - 1);
-    m.leftCols(drop) = copy.leftCols(drop);
-    m.rightCols(S - 1 - drop) = copy.rightCols(S - 1 - drop);
+    m.resize(S - 1, m.cols());
+    m.topRows(drop) = copy.topRows(drop);
+    m.bottomRows(S - 1 - drop) = copy.bottomRows(S - 1 - drop);
   };
   Eigen::VectorXd t(S - 1);
   t << s.t.head(drop), s.t.tail(S - 1 - drop);
