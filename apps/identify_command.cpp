@@ -3,12 +3,10 @@
 //   [--mass KG] [--window S] [--degree N] [--threads N] --out DIR:
 // mass properties from measured free swings, one least-squares solve per
 // measurement set, statistics over the sets, DIR/identification.json.
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "apps/commands.hpp"
 #include "io/identification_report.hpp"
@@ -59,15 +57,6 @@ void use_reduced(rig::RigModel& model, const std::filesystem::path& dir) {
   model.effects.push_back(effect);
 }
 
-rig::VirtualHistory to_record(const io::TimeHistory& h) {
-  rig::VirtualHistory r;
-  r.t = h.t;
-  r.force = h.force;
-  r.alpha = h.alpha;
-  r.beta = h.beta;
-  return r;
-}
-
 rig::IdentificationOptions options_from(const IdentifyArgs& a) {
   rig::IdentificationOptions o;
   if (a.window > 0) o.differentiation.window_s = a.window;
@@ -96,7 +85,7 @@ std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig
   rig::parallel_for(n, threads, [&](int k) {
     const io::MeasurementSet& set = data.sets[static_cast<size_t>(k)];
     std::vector<rig::VirtualHistory> records;
-    for (const auto& h : set.histories) records.push_back(to_record(h));
+    for (const auto& h : set.histories) records.push_back(io::to_record(h));
     std::vector<const rig::VirtualHistory*> ptrs;
     for (const auto& r : records) ptrs.push_back(&r);
     try {

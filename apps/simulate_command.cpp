@@ -27,7 +27,7 @@ struct SimulateArgs {
 
 io::TimeHistory to_time_history(const rig::VirtualHistory& h, const rig::RigModel& model, const SimulateArgs& a,
                                 int set, int history) {
-  io::TimeHistory t;
+  io::TimeHistory t = io::to_time_history(h);
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.10g", model.sensors.sample_rate_hz);
   t.comments = {{"source", "rigflex simulate"},
@@ -37,10 +37,6 @@ io::TimeHistory to_time_history(const rig::VirtualHistory& h, const rig::RigMode
                 {"set", std::to_string(set)},
                 {"history", std::to_string(history)}};
   for (const auto& c : h.comments) t.comments.push_back(c);
-  t.t = h.t;
-  t.force = h.force;
-  t.alpha = h.alpha;
-  t.beta = h.beta;
   return t;
 }
 

@@ -127,14 +127,7 @@ double time_from_files(const rig::IdentificationRig& idr, const std::vector<std:
   rig::parallel_for(measurements, threads, [&](int k) {
     const io::MeasurementSet set = io::read_measurement_set(folders[static_cast<size_t>(k) % folders.size()], idr.rods());
     std::vector<rig::VirtualHistory> records;
-    for (const auto& h : set.histories) {
-      rig::VirtualHistory r;
-      r.t = h.t;
-      r.force = h.force;
-      r.alpha = h.alpha;
-      r.beta = h.beta;
-      records.push_back(std::move(r));
-    }
+    for (const auto& h : set.histories) records.push_back(io::to_record(h));
     if (!rig::identify(idr, pointers(records), {}).observable) throw std::runtime_error("not observable");
   });
   return seconds_since(t0);
@@ -183,12 +176,7 @@ int main(int argc, char** argv) {
       folders.push_back(folder / ("set" + std::to_string(k + 1)));
       std::filesystem::create_directories(folders.back());
       for (size_t j = 0; j < sets[k].size(); ++j) {
-        io::TimeHistory t;
-        t.t = sets[k][j].t;
-        t.force = sets[k][j].force;
-        t.alpha = sets[k][j].alpha;
-        t.beta = sets[k][j].beta;
-        io::write_time_history(folders.back() / ("h" + std::to_string(j + 1) + ".csv"), t);
+        io::write_time_history(folders.back() / ("h" + std::to_string(j + 1) + ".csv"), io::to_time_history(sets[k][j]));
       }
     }
     const long samples = static_cast<long>(o.measurements) * 6 * sets[0][0].t.size();

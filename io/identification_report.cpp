@@ -172,7 +172,6 @@ nlohmann::ordered_json IdentificationReport::json() const {
 std::string IdentificationReport::table() const {
   std::string out;
   char line[512];
-  const auto& names = rig::mass_component_names();
   for (const auto& a : algorithms) {
     std::snprintf(line, sizeof line, "%s algorithm, %s\n", rig::to_string(a.algorithm),
                   tare ? "body (tare subtracted)" : "system on the rods");
@@ -208,7 +207,6 @@ std::string IdentificationReport::table() const {
                     100 * share.all);
       out += line;
     }
-    (void)names;
     out += "(CoG in mm, inertia about the CoG in kg m^2, products negative integrals)\n";
   }
   return out;

@@ -508,6 +508,24 @@ int TimeHistory::rods() const { return static_cast<int>(force.cols()); }
 
 int TimeHistory::samples() const { return static_cast<int>(t.size()); }
 
+rig::VirtualHistory to_record(const TimeHistory& h) {
+  rig::VirtualHistory r;
+  r.t = h.t;
+  r.force = h.force;
+  r.alpha = h.alpha;
+  r.beta = h.beta;
+  return r;
+}
+
+TimeHistory to_time_history(const rig::VirtualHistory& r) {
+  TimeHistory h;
+  h.t = r.t;
+  h.force = r.force;
+  h.alpha = r.alpha;
+  h.beta = r.beta;
+  return h;
+}
+
 std::string TimeHistory::comment(const std::string& key) const {
   for (const auto& [k, v] : comments)
     if (k == key) return v;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "io/input_error.hpp"
+#include "rig/simulation.hpp"
 
 namespace rigflex::io {
 
@@ -49,6 +50,10 @@ std::string format_time_history(const TimeHistory& h);
 // Checks and formats `h` first, then writes the file atomically: on any error
 // no file (and no temporary file) is left, and an existing file is unchanged.
 void write_time_history(const std::filesystem::path& file, const TimeHistory& h);
+
+// The same samples as the rig library's record (comments stay with the file).
+rig::VirtualHistory to_record(const TimeHistory& h);
+TimeHistory to_time_history(const rig::VirtualHistory& r);
 
 // One measurement of a body: the time histories of a folder.
 struct MeasurementSet {

@@ -80,7 +80,7 @@ std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const
   JointPoints b = JointPoints::Zero(3, n), Bs = JointPoints::Zero(3, n);
   for (int i = 0; i < n; ++i) b.col(i) = rig.geometry.rods[i].lower;
   const double size = std::sqrt((b.colwise() - b.rowwise().mean()).squaredNorm() / n);
-  Eigen::VectorXd x0(nj + 6), x1(nj), x2(nj), rhs_v(nj), rhs_a(nj);
+  Eigen::VectorXd x0(nj + 6), x1(nj), x2(nj), rhs_a(nj);
   Eigen::MatrixXd G(nj, 6);
   for (Eigen::Index k = hw; k + hw < S; k += stride) {
     if (segment_start[static_cast<size_t>(k + hw)] > k - hw) continue;
