@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -310,8 +311,26 @@ class Reader {
     const size_t rods = layout.force.size();
     std::vector<double> t(rows), force(rows * rods), alpha(rows * rods), beta(rows * rods);
     std::vector<std::string_view> fields;
+    // Where each field goes in a row's slots (t, F1..Fn, alpha1..n, beta1..n); -1: ignored column.
+    std::vector<int> target(names.size(), -1);
+    target[layout.time] = 0;
+    for (size_t k = 0; k < rods; ++k) {
+      target[layout.force[k]] = static_cast<int>(1 + k);
+      target[layout.alpha[k]] = static_cast<int>(1 + rods + k);
+      target[layout.beta[k]] = static_cast<int>(1 + 2 * rods + k);
+    }
+    std::vector<double> slot(1 + 3 * rods);
     for (size_t r = 0; r < rows; ++r) {
       const size_t line = header + 1 + r;
+      if (fast_row(lines_[line], target, slot) && (r == 0 || slot[0] > t[r - 1])) {
+        t[r] = slot[0];
+        for (size_t k = 0; k < rods; ++k) {
+          force[r * rods + k] = slot[1 + k];
+          alpha[r * rods + k] = slot[1 + rods + k];
+          beta[r * rods + k] = slot[1 + 2 * rods + k];
+        }
+        continue;
+      }
       if (is_blank_line(lines_[line])) fail(line, "", "blank line among the samples");
       split_fields(lines_[line], fields);
       check_field_count(line, fields, names);
@@ -333,6 +352,33 @@ class Reader {
     h.force = Eigen::Map<const RowMajor>(force.data(), n, m);
     h.alpha = Eigen::Map<const RowMajor>(alpha.data(), n, m);
     h.beta = Eigen::Map<const RowMajor>(beta.data(), n, m);
+  }
+
+  // The common row, read without the checks' bookkeeping: every field
+  // exactly a number (no blanks, no '+'), finite, the header's field count.
+  // Anything else returns false and the row is read again by the checked
+  // path, which accepts what the contract allows and names what it does not.
+  static bool fast_row(std::string_view line, const std::vector<int>& target, std::vector<double>& slot) {
+    const char* p = line.data();
+    const char* const end = p + line.size();
+    const size_t fields = target.size();
+    for (size_t f = 0; f < fields; ++f) {
+      const char* stop = static_cast<const char*>(std::memchr(p, ',', static_cast<size_t>(end - p)));
+      if (f + 1 < fields) {
+        if (!stop) return false;
+      } else {
+        if (stop) return false;
+        stop = end;
+      }
+      if (target[f] >= 0) {
+        double v = 0.0;
+        const auto res = std::from_chars(p, stop, v);
+        if (p == stop || res.ec != std::errc() || res.ptr != stop || !std::isfinite(v)) return false;
+        slot[static_cast<size_t>(target[f])] = v;
+      }
+      p = stop + 1;
+    }
+    return true;
   }
 
   void check_field_count(size_t line, const std::vector<std::string_view>& fields,

@@ -62,20 +62,27 @@ std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const
   const Eigen::Index S = motion.t.size();
   std::vector<EquationSample> out;
   if (S < 3) return out;
-  const double h = median_step(motion.t);
+  const double h_median = median_step(motion.t);
+  // Stretches of uniform sampling: a step more than half a sample off the
+  // median (a dropped sample, a logger pause) ends one. Smaller deviations
+  // are time stamps rounded by the logger (300 Hz stamped in whole ms: steps
+  // of 3 and 4 ms) over a uniform clock: the samples count, not the stamps,
+  // and the sample interval is the mean step inside the stretches.
+  std::vector<Eigen::Index> segment_start(static_cast<size_t>(S));
+  segment_start[0] = 0;
+  double inside = 0;
+  Eigen::Index steps = 0;
+  for (Eigen::Index k = 1; k < S; ++k) {
+    const double dt = motion.t(k) - motion.t(k - 1);
+    const bool uniform = std::abs(dt - h_median) < 0.5 * h_median;
+    segment_start[static_cast<size_t>(k)] = uniform ? segment_start[static_cast<size_t>(k - 1)] : k;
+    if (uniform) inside += dt, ++steps;
+  }
+  const double h = steps ? inside / static_cast<double>(steps) : h_median;
   const SavitzkyGolayKernels kern = savitzky_golay_kernels(options.differentiation, h);
   const int hw = kern.half_width;
   const int stride = std::max(1, static_cast<int>(std::lround(1.0 / (h * options.equation_rate_hz))));
   const Eigen::Index nj = 3 * n;
-
-  // Stretches of uniform sampling: a step more than 1 % off the median (a
-  // dropped sample, a logger hiccup) ends one.
-  std::vector<Eigen::Index> segment_start(static_cast<size_t>(S));
-  segment_start[0] = 0;
-  for (Eigen::Index k = 1; k < S; ++k) {
-    const bool uniform = std::abs(motion.t(k) - motion.t(k - 1) - h) <= 0.01 * h;
-    segment_start[static_cast<size_t>(k)] = uniform ? segment_start[static_cast<size_t>(k - 1)] : k;
-  }
 
   JointPoints b = JointPoints::Zero(3, n), Bs = JointPoints::Zero(3, n);
   for (int i = 0; i < n; ++i) b.col(i) = rig.geometry.rods[i].lower;

@@ -72,8 +72,9 @@ struct IdentificationResult {
 // and the rigid velocity and acceleration fields v + w x rho_i and
 // a + dw x rho_i + w x (w x rho_i) to their derivatives (least squares over
 // the joints). Equation times: every sample whose window lies inside a
-// stretch of uniform sampling (a dropped sample splits the record), thinned
-// to equation_rate_hz. RecordError when the joints fit no rigid pose.
+// stretch of uniform sampling (a step more than half a sample off the
+// median, as a dropped sample makes, splits the record), thinned to
+// equation_rate_hz. RecordError when the joints fit no rigid pose.
 std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const MotionSeries& motion,
                                              const IdentificationOptions& options);
 

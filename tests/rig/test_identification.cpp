@@ -283,6 +283,21 @@ TEST(IdentificationExact, DroppedSampleSplitsTheRecordWithoutBias) {
   for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
 }
 
+TEST(IdentificationExact, TimeStampsRoundedByTheLoggerDoNotSplitTheRecord) {
+  // 300 Hz stamped in whole milliseconds: steps of 3 and 4 ms over a uniform
+  // clock. The samples are uniform, so the answer is as exact as unrounded.
+  const Truth body = reference_body();
+  const auto rig = three_rod_rig(body.m);
+  rig::MotionSeries s = exact_series(rig, body, AnalyticMotion{}, 300, 10);
+  s.t = (s.t * 1000.0).array().round() / 1000.0;
+  const auto samples = rig::equation_samples(rig, s, exact_options());
+  ASSERT_GT(samples.size(), 400u);  // 50 per second over 10 s, less the window's edges
+  const auto r = rig::solve_mass_properties(samples, body.m, {}, 9.80665, 1.5, exact_options());
+  ASSERT_TRUE(r.observable) << r.message;
+  const auto e = relative_errors(r, body);
+  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+}
+
 TEST(IdentificationPoseFit, RecoversRandomPosesExactlyAndReportsInconsistency) {
   std::mt19937_64 gen(7);
   std::normal_distribution<double> n01;
