@@ -97,7 +97,11 @@ std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig
       throw io::InputError(set.files[i].string(), line, e.channel(), e.what());
     }
     if (!out[static_cast<size_t>(k)].observable) {
-      throw io::InputError(data.names[static_cast<size_t>(k)], 0, "", out[static_cast<size_t>(k)].message);
+      // A folder names its set; loose files are named by the first of them.
+      const std::string where = data.names[static_cast<size_t>(k)] == "files"
+                                    ? set.files.front().string() + " (and the other files of the set)"
+                                    : data.names[static_cast<size_t>(k)];
+      throw io::InputError(where, 0, "", out[static_cast<size_t>(k)].message);
     }
     if (!quiet) {
       std::lock_guard<std::mutex> lock(progress);

@@ -105,9 +105,19 @@ Json algorithm_json(const IdentificationReport& rep, const IdentificationReport:
     const rig::AccuracyShare share = rig::share_within_accuracy(a.records, *rep.reference, rep.limits);
     j["accuracy_share"] = {{"components", share.component}, {"all", share.all}};
   }
-  const std::optional<double> static_z =
-      rep.static_cog_height ? rep.static_cog_height
-                            : (rep.reference ? std::optional<double>(rep.reference->cog.z()) : std::nullopt);
+  // The static zG is the system's; with a tare the records are the body's,
+  // so the tare comes out of the reference too. An imposed zG has no
+  // scatter to plot.
+  std::optional<double> static_z;
+  if (rep.static_cog_height && rep.options.cog_constraint != rig::CogConstraint::full) {
+    static_z = *rep.static_cog_height;
+    if (rep.tare) {
+      const double m = a.results.front().properties.mass;
+      static_z = (m * *static_z - rep.tare->mass * rep.tare->cog.z()) / (m - rep.tare->mass);
+    }
+  } else if (!rep.static_cog_height && rep.reference) {
+    static_z = rep.reference->cog.z();
+  }
   if (static_z) {
     std::vector<double> dz;
     for (const auto& rec : a.records) dz.push_back(rec.cog.z() - *static_z);

@@ -17,7 +17,10 @@ fe::MassProperties parse_mass_record(const std::string& text, const std::string&
   }
   const YamlContext ctx(source);
   if (root.IsMap() && root["mean"]) root = root["mean"];  // an identification.json
-  ctx.expect_map(root, "mass properties record", {"mass", "cog", "inertia", "std", "name", "confidence_interval"});
+  // What identify writes beside the record in its `mean` is accepted and not used.
+  ctx.expect_map(root, "mass properties record",
+                 {"mass", "cog", "inertia", "std", "name", "confidence_interval_95", "principal_moments",
+                  "principal_axes"});
   fe::MassProperties p;
   p.mass = ctx.number(root, "mass");
   if (!(p.mass > 0)) ctx.fail(root["mass"], "mass", "must be positive");

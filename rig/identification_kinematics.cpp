@@ -59,7 +59,9 @@ MotionSeries motion_series(const IdentificationRig& rig, const VirtualHistory& r
     for (int i = 0; i < n; ++i) {
       u[i] = rod_direction(rig.geometry.rods[i].encoder_axis, {sample.alpha(i), sample.beta(i)});
       if (!(u[i].z() < 0)) {
-        throw RecordError(k, "alpha" + std::to_string(i + 1),
+        // u_z = -cos(alpha) cos(beta): name the angle that turned the rod up.
+        const bool beta_bad = std::cos(sample.beta(i)) <= 0;
+        throw RecordError(k, (beta_bad ? "beta" : "alpha") + std::to_string(i + 1),
                           "rod " + std::to_string(i + 1) + " would point above its upper joint: alpha " +
                               std::to_string(sample.alpha(i)) + " rad, beta " + std::to_string(sample.beta(i)) +
                               " rad are impossible for a hanging rod (check the encoder columns and units)");

@@ -35,7 +35,13 @@ void parallel_for(int count, int threads, Body body) {
     work();
   } else {
     std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(work);
+    try {
+      for (int t = 0; t < threads; ++t) pool.emplace_back(work);
+    } catch (...) {
+      // A thread that cannot start: the started ones finish the work (or
+      // stop at the first error); none is left joinable.
+      if (pool.empty()) work();
+    }
     for (auto& t : pool) t.join();
   }
   if (error) std::rethrow_exception(error);

@@ -74,7 +74,9 @@ SweepPoint evaluate(const RigModel& nominal, SweepKind kind, double scale, const
     }
   } catch (const NoEquilibrium& e) {
     p.failure = std::string("no static equilibrium: ") + e.what();
-  } catch (const std::runtime_error& e) {
+  } catch (const std::exception& e) {
+    // A point the model cannot carry (a mass matrix that is no longer
+    // positive, records no pose fits) is a result of the sweep, not its end.
     p.failure = e.what();
   }
   return p;

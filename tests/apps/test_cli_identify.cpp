@@ -135,7 +135,7 @@ TEST_F(CliIdentify, ImpossibleAnglesAreNamedByFileLineAndColumn) {
 TEST_F(CliIdentify, TooShortRecordReportsWhatIsNotObservable) {
   const TempDir out("rigflex-identify");
   fs::create_directories(out.path() / "set");
-  // The first 40 samples (0.08 s): shorter than the 0.2 s differentiation window.
+  // The first 40 samples (0.08 s): shorter than the 0.3 s differentiation window.
   std::istringstream in(read_text(dir_ / "meas" / "set1" / "h1.csv"));
   std::string line, kept;
   int data = -1;

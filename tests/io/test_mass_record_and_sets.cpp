@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io/identification_report.hpp"
 #include "io/input_error.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
@@ -67,6 +68,30 @@ TEST(MassRecord, JsonOfTheRecordReadsBack) {
   EXPECT_EQ(q.mass, p.mass);
   EXPECT_EQ(q.cog, p.cog);
   EXPECT_EQ(q.inertia, p.inertia);
+}
+
+TEST(MassRecord, ReadsTheMeanOfWhatIdentifyWrites) {
+  // --tare and --reference take identify's own output: its `mean` carries
+  // std, the 95 % interval and principal axes besides the record.
+  io::IdentificationReport rep;
+  rep.rig = "r";
+  rep.set_names = {"set1", "set2"};
+  rep.set_files = {{"a.csv"}, {"b.csv"}};
+  std::vector<rig::IdentificationResult> results(2);
+  for (int k = 0; k < 2; ++k) {
+    results[k].observable = true;
+    results[k].properties.mass = 400;
+    results[k].properties.cog = Eigen::Vector3d(0.01 * k, 0.0, -0.1);
+    results[k].properties.inertia = rig::inertia_tensor({300.0 + k, 420, 650, 1, 0, 0});
+  }
+  rep.add(rig::IdentificationAlgorithm::rigid, results);
+  const nlohmann::ordered_json j = rep.json();
+  ASSERT_TRUE(j["mean"].contains("confidence_interval_95"));
+  const fe::MassProperties p = io::parse_mass_record(j.dump(2), "identification.json");
+  EXPECT_EQ(p.mass, 400.0);
+  EXPECT_NEAR(p.cog.x(), 0.005, 1e-15);
+  EXPECT_NEAR(p.inertia(0, 0), 300.5, 1e-12);
+  EXPECT_EQ(p.inertia(0, 1), 1.0);
 }
 
 // A minimal valid history of `rods` rods.
