@@ -1,3 +1,4 @@
+#include "rig/skew.hpp"
 #include "rig/identification.hpp"
 
 #include <Eigen/Dense>
@@ -11,12 +12,6 @@
 
 namespace rigflex::rig {
 namespace {
-
-Eigen::Matrix3d skew(const Vec3& v) {
-  Eigen::Matrix3d S;
-  S << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return S;
-}
 
 // J v as a linear map of (Jxx, Jyy, Jzz, Jxy, Jxz, Jyz).
 Eigen::Matrix<double, 3, 6> inertia_map(const Vec3& v) {

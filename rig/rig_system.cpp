@@ -1,3 +1,4 @@
+#include "rig/skew.hpp"
 #include "rig/rig_system.hpp"
 
 #include <cmath>
@@ -7,12 +8,6 @@
 
 namespace rigflex::rig {
 namespace {
-
-Eigen::Matrix3d skew(const Vec3& a) {
-  Eigen::Matrix3d s;
-  s << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return s;
-}
 
 Eigen::Quaterniond exp_map(const Vec3& theta) {
   const double angle = theta.norm();

@@ -151,6 +151,13 @@ std::array<double, 9> relative_errors(const rig::IdentificationResult& r, const 
   return e;
 }
 
+// Every parameter within 1e-8 of its scale (the exact-data tolerance).
+void expect_recovered_to_1e8(const rig::IdentificationResult& r, const Truth& b) {
+  ASSERT_TRUE(r.observable) << r.message;
+  const auto e = relative_errors(r, b);
+  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+}
+
 // Short, high-degree kernels: their bias at 1.9 Hz, (omega T)^10-ish, is far
 // below 1e-12, so what remains is rounding.
 rig::IdentificationOptions exact_options() {
@@ -171,9 +178,7 @@ TEST(IdentificationExact, AnalyticMotionRecoversAllNineParametersTo1e8) {
 
   const auto samples = rig::equation_samples(rig, exact_series(rig, body, motion, 500, 15), o);
   const auto r = rig::solve_mass_properties(samples, body.m, {}, 9.80665, 1.5, o);
-  ASSERT_TRUE(r.observable) << r.message;
-  const auto e = relative_errors(r, body);
-  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+  expect_recovered_to_1e8(r, body);
   double worst_pose = 0;
   for (const auto& e : samples) worst_pose = std::max(worst_pose, e.pose_residual);
   EXPECT_LT(worst_pose, 1e-12);
@@ -194,9 +199,7 @@ TEST(IdentificationExact, ImposedCogGivesTheSameInertia) {
     o.cog_constraint = c;
     o.imposed_cog = body.c;
     const auto r = rig::solve_mass_properties(samples, body.m, {}, 9.80665, 1.5, o);
-    ASSERT_TRUE(r.observable) << r.message;
-    const auto e = relative_errors(r, body);
-    for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+    expect_recovered_to_1e8(r, body);
     // Imposed components come back exactly as given.
     EXPECT_EQ(r.properties.cog.x(), body.c.x());
     EXPECT_EQ(r.properties.cog.y(), body.c.y());
@@ -225,9 +228,7 @@ TEST(IdentificationExact, RodPointMassesAreTakenOutOfTheResult) {
   with.c = S / with.m;
   const auto samples = rig::equation_samples(rig, exact_series(rig, with, AnalyticMotion{}, 500, 10), exact_options());
   const auto r = rig::solve_mass_properties(samples, body.m, points, 9.80665, 1.5, exact_options());
-  ASSERT_TRUE(r.observable) << r.message;
-  const auto e = relative_errors(r, body);
-  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+  expect_recovered_to_1e8(r, body);
 }
 
 TEST(IdentificationExact, StillRecordIsNotObservableAndNamesTheParameters) {
@@ -285,9 +286,7 @@ TEST(IdentificationExact, DroppedSampleSplitsTheRecordWithoutBias) {
   remove(s.moment);
   const auto r = rig::solve_mass_properties(rig::equation_samples(rig, s, exact_options()), body.m, {}, 9.80665, 1.5,
                                             exact_options());
-  ASSERT_TRUE(r.observable) << r.message;
-  const auto e = relative_errors(r, body);
-  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+  expect_recovered_to_1e8(r, body);
 }
 
 TEST(IdentificationExact, TimeStampsRoundedByTheLoggerDoNotSplitTheRecord) {
@@ -300,9 +299,7 @@ TEST(IdentificationExact, TimeStampsRoundedByTheLoggerDoNotSplitTheRecord) {
   const auto samples = rig::equation_samples(rig, s, exact_options());
   ASSERT_GT(samples.size(), 400u);  // 50 per second over 10 s, less the window's edges
   const auto r = rig::solve_mass_properties(samples, body.m, {}, 9.80665, 1.5, exact_options());
-  ASSERT_TRUE(r.observable) << r.message;
-  const auto e = relative_errors(r, body);
-  for (size_t i = 0; i < 9; ++i) EXPECT_LT(e[i], 1e-8) << rig::mass_component_names()[i];
+  expect_recovered_to_1e8(r, body);
 }
 
 TEST(IdentificationRodMass, HeavyRodsAtRestLeaveTheSystemsWeightAndItsMoment) {
