@@ -13,6 +13,8 @@ void add_simulate_command(CLI::App& app, int& exit_code);
 void add_check_command(CLI::App& app, int& exit_code);
 void add_identify_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
+void add_compare_command(CLI::App& app, int& exit_code);
+void add_diagnose_command(CLI::App& app, int& exit_code);
 
 // A value > 0, refused with a plain message ("--histories: must be positive,
 // got 0"): CLI11's PositiveNumber names its range up to 1.8e308.

@@ -15,6 +15,7 @@
 #include "io/measurement_csv.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_layout.hpp"
+#include "io/reports.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
@@ -154,8 +155,9 @@ int run(const IdentifyArgs& a) {
   std::filesystem::create_directories(out);
   io::FileBatch batch;
   batch.add_text(out / "identification.json", report.json().dump(2) + "\n");
+  batch.add_text(out / "identification.html", io::identification_html(report).html());
   batch.commit();
-  std::printf("wrote %s/identification.json\n", a.out.c_str());
+  std::printf("wrote %s/identification.json and %s/identification.html\n", a.out.c_str(), a.out.c_str());
   return 0;
 }
 

@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   rigflex::app::add_check_command(app, exit_code);
   rigflex::app::add_identify_command(app, exit_code);
   rigflex::app::add_sweep_command(app, exit_code);
+  rigflex::app::add_compare_command(app, exit_code);
+  rigflex::app::add_diagnose_command(app, exit_code);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,13 +1,14 @@
 // rigflex sweep RIG.yaml [--mass-scale 0.1:1:10] [--stiffness-scale 1:10:10]
 //   [--sets 9] [--histories 6] [--duration 15] [--seed S] [--threads N] --out DIR:
 // identification error against mass and stiffness (rig/sweep.hpp), as
-// DIR/sweep.csv and DIR/sweep.json.
+// DIR/sweep.csv, DIR/sweep.json and the report DIR/sweep.html.
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/commands.hpp"
+#include "io/reports.hpp"
 #include "io/atomic_file.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/sweep.hpp"
@@ -130,8 +131,9 @@ int run(const SweepArgs& a) {
   io::FileBatch batch;
   batch.add_text(out / "sweep.csv", csv(points));
   batch.add_text(out / "sweep.json", j.dump(2) + "\n");
+  batch.add_text(out / "sweep.html", io::sweep_html(model.name, points).html());
   batch.commit();
-  std::printf("(errors: identified - true; zG mean over the sets in mm, Jyy mean relative in %%)\nwrote %s/sweep.csv and sweep.json\n",
+  std::printf("(errors: identified - true; zG mean over the sets in mm, Jyy mean relative in %%)\nwrote %s/sweep.csv, sweep.json and sweep.html\n",
               a.out.c_str());
   return 0;
 }

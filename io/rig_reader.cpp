@@ -12,6 +12,7 @@
 #include "rig/effect.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
+#include "rig/joint_compliance.hpp"
 
 namespace rigflex::io {
 namespace {
@@ -23,6 +24,7 @@ struct Reader {
   std::filesystem::path base;
   const RigReadOptions& options;
   int rods = 0;
+  double mass = 0;  // the body's, for the joints of a frame given by its joint compliance
 
   // Runs `read` with the keys of its errors named under `path`: "upper" read
   // for rod 2 is reported as "geometry.rods[2].upper". Errors about other
@@ -212,6 +214,9 @@ struct Reader {
     const std::string key = "effects." + name;
     auto frame_keys = {"enabled", "reduced", "model", "interface", "method", "modes", "cutoff", "zeta", "offset",
                        "tolerance"};
+    if ((name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility") && e["joint_compliance"]) {
+      return joint_compliance_frame(name, e, g);
+    }
     if (name == "fixed_frame_flexibility") {
       ctx.expect_map(e, key, frame_keys);
       const auto f = frame(e, key, reduction::FrameSupport::grounded);
@@ -286,6 +291,69 @@ struct Reader {
     std::string known;
     for (const char* n : rig::effect_names()) known += std::string(known.empty() ? "" : ", ") + n;
     ctx.fail(e, key, "unknown effect '" + name + "' (known: " + known + ")");
+  }
+
+  // A frame given by the compliance of its joints (rig/joint_compliance.hpp),
+  // as `rigflex diagnose` fits it.
+  std::shared_ptr<const rig::Effect> joint_compliance_frame(const std::string& name, const YAML::Node& e,
+                                                            const rig::RigGeometry& g) const {
+    const std::string key = "effects." + name;
+    ctx.expect_map(e, key, {"enabled", "joint_compliance"});
+    const YAML::Node c = e["joint_compliance"];
+    const std::string at = key + ".joint_compliance";
+    auto non_negative = [&](const Vec3& v, const YAML::Node& node, const std::string& k) {
+      if (!(v.minCoeff() >= 0)) ctx.fail(node, at + "." + k, "compliances must be >= 0 (m/N; rocking, twist rad/(N m))");
+    };
+    auto pair = [&](const char* k) {
+      Eigen::Vector2d v = Eigen::Vector2d::Zero();
+      if (!c[k]) return v;
+      if (!c[k].IsSequence() || c[k].size() != 2) ctx.fail(c[k], at + "." + k, "needs [x, y]");
+      v << ctx.as_number(c[k][0], at + "." + k), ctx.as_number(c[k][1], at + "." + k);
+      non_negative(Vec3(v.x(), v.y(), 0.0), c[k], k);
+      return v;
+    };
+    if (name == "fixed_frame_flexibility") {
+      ctx.expect_map(c, at, {"joints", "sway", "twist"});
+      rig::FixedJointCompliance jc;
+      jc.joints = within(at, [&] { return per_rod_vectors(c, "joints"); });
+      for (const auto& v : jc.joints) non_negative(v, c["joints"], "joints");
+      jc.sway = pair("sway");
+      jc.twist = ctx.number_or(c, "twist", 0.0);
+      non_negative(Vec3(jc.twist, 0, 0), c["twist"], "twist");
+      return guarded(c, at, [&] {
+        return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(g, mass, jc));
+      });
+    }
+    ctx.expect_map(c, at, {"translation", "rocking"});
+    rig::CarryingJointCompliance jc;
+    if (c["translation"]) jc.translation = ctx.vec3(c, "translation");
+    non_negative(jc.translation, c["translation"], "translation");
+    jc.rocking = pair("rocking");
+    return guarded(c, at, [&] {
+      return std::make_shared<rig::CarryingFrameFlexibility>(rig::joint_compliance_carrying_frame(g, mass, jc));
+    });
+  }
+
+  // The `effects` mapping: every effect switched on, in the file's order.
+  void effects(const YAML::Node& effects, rig::RigModel& model) const {
+    if (!effects.IsMap()) ctx.fail(effects, "effects", "must be a mapping of effect name to parameters");
+    for (const auto& kv : effects) {
+      const std::string name = kv.first.as<std::string>();
+      const std::string key = "effects." + name;
+      const YAML::Node& e = kv.second;
+      bool known = false;
+      std::string names;
+      for (const char* n : rig::effect_names()) {
+        known = known || name == n;
+        names += std::string(names.empty() ? "" : ", ") + n;
+      }
+      // Checked before 'enabled': a misspelt effect switched off is still misspelt.
+      if (!known) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + names + ")");
+      if (!e.IsMap()) ctx.fail(e, key, "parameters must be a mapping");
+      std::erase_if(model.effects, [&](const auto& x) { return name == x->name(); });
+      if (!within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
+      model.effects.push_back(within(key, [&] { return effect(name, e, model.geometry); }));
+    }
   }
 
   template <class F>
@@ -375,26 +443,8 @@ rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source,
   if (root["sensors"]) model.sensors = r.within("sensors", [&] { return r.sensors(root["sensors"]); });
   if (root["release"]) model.release = r.within("release", [&] { return r.release(root["release"]); });
   if (root["simulation"]) model.simulation = r.within("simulation", [&] { return r.simulation(root["simulation"]); });
-  if (root["effects"]) {
-    const YAML::Node effects = root["effects"];
-    if (!effects.IsMap()) ctx.fail(effects, "effects", "must be a mapping of effect name to parameters");
-    for (const auto& kv : effects) {
-      const std::string name = kv.first.as<std::string>();
-      const std::string key = "effects." + name;
-      const YAML::Node& e = kv.second;
-      bool known = false;
-      std::string names;
-      for (const char* n : rig::effect_names()) {
-        known = known || name == n;
-        names += std::string(names.empty() ? "" : ", ") + n;
-      }
-      // Checked before 'enabled': a misspelt effect switched off is still misspelt.
-      if (!known) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + names + ")");
-      if (!e.IsMap()) ctx.fail(e, key, "parameters must be a mapping");
-      if (!r.within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
-      model.effects.push_back(r.within(key, [&] { return r.effect(name, e, model.geometry); }));
-    }
-  }
+  r.mass = model.body.mass;
+  if (root["effects"]) r.effects(root["effects"], model);
   try {
     model.validate();
   } catch (const std::invalid_argument& x) {
@@ -441,6 +491,32 @@ rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& 
   std::stringstream ss;
   ss << in.rdbuf();
   return parse_rig(ss.str(), file.string(), file.parent_path(), options);
+}
+
+void add_effects(rig::RigModel& model, const std::filesystem::path& file, const RigReadOptions& options) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file.string(), 0, "", "cannot open the effects file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  YAML::Node root;
+  try {
+    root = YAML::Load(ss.str());
+  } catch (const YAML::ParserException& e) {
+    throw InputError(file.string(), e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
+  }
+  Reader r{YamlContext(file.string()), file.parent_path(), options};
+  if (!root.IsMap() || !root["effects"]) {
+    throw InputError(file.string(), 1, "effects", "an effects file is a mapping with the one key 'effects'");
+  }
+  r.ctx.expect_map(root, "effects file", {"effects"});
+  r.rods = model.geometry.rod_count();
+  r.mass = model.body.mass;
+  r.effects(root["effects"], model);
+  try {
+    model.validate();
+  } catch (const std::invalid_argument& x) {
+    throw InputError(file.string(), YamlContext::line_of(root["effects"]), "effects", x.what());
+  }
 }
 
 }  // namespace rigflex::io

@@ -23,6 +23,11 @@ rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& 
 rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,
                         const RigReadOptions& options = {});
 
+// Adds (or replaces, by name) the effects of a file holding one key,
+// `effects`, in the rig file's form: what `rigflex diagnose` writes for a
+// fitted effect. Relative paths resolve against the file's folder.
+void add_effects(rig::RigModel& model, const std::filesystem::path& file, const RigReadOptions& options = {});
+
 // The error for a rig read from `file` whose static equilibrium was not found
 // (rig::NoEquilibrium, message `detail`, from the check or the simulation):
 // names the file and the line and key of the likeliest cause. That is

@@ -17,3 +17,6 @@ bash scripts/build.sh
 ./build/rigflex simulate examples/large-rig/rig.yaml --sets 1 --histories 6 --duration 15 --seed 1 --out out/large-rig-measurement
 ./build/rigflex identify examples/large-rig/rig.yaml out/large-rig-measurement --algorithm both \
   --out out/large-rig-identification
+# The compare-diagnose loop (examples/hidden-effect/README.md): the model
+# misses the fixed frame's flexibility; diagnose finds it; the error falls.
+bash examples/hidden-effect/run.sh build/rigflex out/hidden-effect

@@ -7,9 +7,14 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopenblas-dev
   libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmatio-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libboost-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libboost-dev libfftw3-dev
   calculix-ccx python3-scipy python3-numpy
+  chromium
 )
+# npm fetches the plotting library of the HTML reports (third_party/js). A
+# node/npm already installed (e.g. from NodeSource) is used as it is: Debian's
+# npm package would conflict with it.
+if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -39,3 +44,15 @@ for lib in libblas.so.3 liblapack.so.3; do
     $SUDO update-alternatives --set "${lib}-${arch_triplet}" "$cand" >/dev/null
   fi
 done
+
+# Chart.js, inlined into the HTML reports (docs/reports.md), from the npm
+# registry at the version pinned by third_party/js/package-lock.json.
+js_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/third_party/js"
+if [ ! -f "$js_dir/node_modules/chart.js/dist/chart.umd.js" ]; then
+  echo "install-deps: installing the report's JavaScript into third_party/js/node_modules"
+  if [ -f "$js_dir/package-lock.json" ]; then
+    npm ci --prefix "$js_dir" --no-audit --no-fund >/dev/null
+  else
+    npm install --prefix "$js_dir" --no-audit --no-fund >/dev/null
+  fi
+fi

@@ -33,6 +33,18 @@ inline rig::RigModel multifilar_rig(int n = 3, double R = 0.4, double L = 1.0, d
   return model;
 }
 
+// The trifilar of the compare and diagnose tests: 200 kg on three 1 m rods
+// at 0.5 m, CoG off centre, load cells with 1 N and encoders with 2e-5 rad
+// of noise at 500 Hz.
+inline rig::RigModel noisy_trifilar() {
+  rig::RigModel m = multifilar_rig(3, 0.5, 1.0, 200.0, 0.6, 0.2);
+  m.body.cog = rig::Vec3(0.05, -0.03, -0.2);
+  m.sensors.sample_rate_hz = 500;
+  m.sensors.force_noise_n = 1.0;
+  m.sensors.angle_noise_rad = 2e-5;
+  return m;
+}
+
 // The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
 inline double swing_frequency_along(const rig::Linearization& lin, int j) {
   double best = -1, f = 0;

@@ -1,0 +1,154 @@
+// rigflex compare RIG.yaml DATA... --out DIR [--effects FILE]... [--reference FILE]
+//   [--study DIR] [--fit-window S] [--threads N] [--quiet]:
+// the model against measured histories: the swing state fitted to each
+// record's first seconds, the record simulated, residuals per channel and
+// where they concentrate, the mass properties identified with the model's
+// algorithm; DIR/compare.json, DIR/model/*.csv (the model's signals, in the
+// measurement format), and, with --study, the error of this model version
+// next to the earlier ones.
+#include <cstdio>
+#include <filesystem>
+
+#include "apps/commands.hpp"
+#include "apps/measured_model.hpp"
+#include "io/atomic_file.hpp"
+#include "io/compare_json.hpp"
+#include "io/mass_record.hpp"
+#include "io/reports.hpp"
+#include "io/rig_reader.hpp"
+#include "io/study.hpp"
+#include "rig/equilibrium.hpp"
+#include "rig/model_comparison.hpp"
+
+namespace rigflex::app {
+namespace {
+
+struct CompareArgs {
+  std::string rig;
+  std::vector<std::string> data, effects;
+  std::string reference, study, out;
+  double fit_window = 0;
+  int threads = 0;
+  bool quiet = false;
+};
+
+io::TimeHistory model_history(const rig::HistoryComparison& h, int rods, const std::string& label) {
+  io::TimeHistory t;
+  t.comments = {{"source", "rigflex compare: model " + label}, {"measurement", h.source}};
+  t.t = h.t();
+  t.force = h.model.leftCols(rods);
+  t.alpha = h.model.middleCols(rods, rods);
+  t.beta = h.model.rightCols(rods);
+  return t;
+}
+
+void print_table(const rig::ModelComparison& c) {
+  std::printf("%-8s %10s %10s %14s\n", "channel", "NRMSE", "raw NRMSE", "residual/noise");
+  for (size_t i = 0; i < c.channels.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    std::printf("%-8s %10.4f %10.4f %14.2f\n", c.channels[i].c_str(), c.nrmse(k), c.raw_nrmse(k),
+                c.analysis.noise_ratio(k));
+  }
+  std::printf("overall NRMSE %.4f (forces %.4f, angles %.4f) in the swing band; raw %.4f (forces %.4f)\n",
+              c.overall_nrmse, c.force_nrmse, c.angle_nrmse, c.raw_overall_nrmse, c.raw_force_nrmse);
+  std::printf("trend %+.4f per s; extra decay (measured - model) %+.4f 1/s\n", c.analysis.trend_slope,
+              c.analysis.extra_decay_rate);
+  for (const auto& s : c.analysis.correlations) {
+    std::printf("residual vs %-16s largest correlation %+.2f (%s)\n", s.state.c_str(), s.largest, s.channel.c_str());
+  }
+  if (c.identified) {
+    const auto& p = c.identified->properties;
+    std::printf("identified (%s): m %.2f kg, CoG (%.4f, %.4f, %.4f) m\n", rig::to_string(c.algorithm), p.mass,
+                p.cog.x(), p.cog.y(), p.cog.z());
+  } else if (!c.identification_error.empty()) {
+    std::printf("identification: %s\n", c.identification_error.c_str());
+  }
+}
+
+int run(const CompareArgs& a) {
+  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
+  io::CompareContext ctx;
+  ctx.rig = mm.model.name;
+  ctx.model_label = mm.label;
+  ctx.model_effects = mm.effect_names;
+  if (!a.reference.empty()) ctx.reference = io::read_mass_record(a.reference);
+
+  rig::ModelComparisonOptions o;
+  if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
+  o.threads = a.threads;
+  if (!a.quiet) o.progress = [](int done, int total) { std::fprintf(stderr, "compare: history %d/%d\n", done, total); };
+  std::unique_ptr<rig::ResponseModel> model;
+  try {
+    model = std::make_unique<rig::ResponseModel>(mm.model);
+  } catch (const rig::NoEquilibrium& e) {
+    throw io::no_equilibrium_error(a.rig, mm.model, e.what());
+  }
+  rig::ModelComparison c;
+  try {
+    c = rig::compare_model(*model, mm.pointers(), mm.sources(), o);
+  } catch (const rig::RecordError& e) {
+    rethrow_record_error(mm, e);
+  }
+  for (const auto& w : c.warnings) std::fprintf(stderr, "compare: warning: %s\n", w.c_str());
+  print_table(c);
+
+  nlohmann::ordered_json j = io::compare_json(c, ctx);
+  std::vector<io::StudyEntry> entries;
+  if (!a.study.empty()) {
+    io::StudyEntry e;
+    e.label = mm.label;
+    e.fingerprint = io::model_fingerprint(mm.model_files);
+    e.effects = mm.effect_names;
+    e.overall_nrmse = c.overall_nrmse;
+    e.force_nrmse = c.force_nrmse;
+    e.angle_nrmse = c.angle_nrmse;
+    for (size_t i = 0; i < c.channels.size(); ++i) e.nrmse[c.channels[i]] = c.nrmse(static_cast<Eigen::Index>(i));
+    if (c.identified) e.identified_cog_z = c.identified->properties.cog.z();
+    entries = io::record_in_study(a.study, e);
+    nlohmann::ordered_json versions = nlohmann::ordered_json::array();
+    std::printf("study %s:\n%-8s %-12s %-12s %s\n", a.study.c_str(), "version", "overall", "forces", "model");
+    for (const auto& x : entries) {
+      std::printf("%-8d %-12.4f %-12.4f %s%s\n", x.version, x.overall_nrmse, x.force_nrmse, x.label.c_str(),
+                  x.fingerprint == e.fingerprint ? "  <- this run" : "");
+      versions.push_back({{"version", x.version}, {"label", x.label}, {"overall_nrmse", x.overall_nrmse},
+                          {"force_nrmse", x.force_nrmse}, {"angle_nrmse", x.angle_nrmse},
+                          {"current", x.fingerprint == e.fingerprint}});
+    }
+    j["study"] = versions;
+  }
+
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out / "model");
+  io::FileBatch batch;
+  batch.add_text(out / "compare.json", j.dump(2) + "\n");
+  batch.add_text(out / "compare.html", io::compare_report(c, ctx, entries).html());
+  const int rods = mm.model.geometry.rod_count();
+  for (size_t i = 0; i < c.histories.size(); ++i) {
+    const io::TimeHistory th = model_history(c.histories[i], rods, mm.label);
+    batch.add(out / "model" / mm.files[i].filename(), [th](const std::filesystem::path& p) { io::write_time_history(p, th); });
+  }
+  batch.commit();
+  std::printf("wrote %s/compare.json, %s/compare.html and %zu model histories in %s/model\n", a.out.c_str(),
+              a.out.c_str(), c.histories.size(), a.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("compare", "Compare the rig model with measured free swings");
+  auto a = std::make_shared<CompareArgs>();
+  cmd->add_option("rig", a->rig, "rig YAML file")->required();
+  cmd->add_option("data", a->data, "measurement files or set folders")->required();
+  cmd->add_option("--effects", a->effects, "YAML file with an `effects:` block added to the model (e.g. from diagnose)");
+  cmd->add_option("--reference", a->reference, "static reference mass properties record");
+  cmd->add_option("--study", a->study, "study folder: keeps every model version's errors (study.json)");
+  cmd->add_option("--fit-window", a->fit_window, "seconds at the start of each record the swing state is fitted to")
+      ->check(positive());
+  cmd->add_option("--threads", a->threads, "histories compared in parallel (0: all cores)");
+  cmd->add_option("--out", a->out, "output folder")->required();
+  cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
+  cmd->callback([a, &exit_code] { exit_code = run(*a); });
+}
+
+}  // namespace rigflex::app

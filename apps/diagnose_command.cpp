@@ -1,0 +1,114 @@
+// rigflex diagnose RIG.yaml DATA... --out DIR [--effects FILE]... [--only NAMES]
+//   [--threads N] [--quiet]:
+// which effect of the catalogue the model misses: each one the model lacks
+// fitted to the measurements with every history's swing state, ranked by
+// the share of the residual it explains; DIR/diagnosis.json, and per effect
+// DIR/effects/<effect>.yaml with the fitted values, ready for
+// `rigflex compare --effects` or to paste into the rig file.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "apps/commands.hpp"
+#include "apps/measured_model.hpp"
+#include "io/atomic_file.hpp"
+#include "io/compare_json.hpp"
+#include "io/reports.hpp"
+#include "io/rig_reader.hpp"
+#include "rig/diagnosis.hpp"
+#include "rig/equilibrium.hpp"
+#include "rig/residual_analysis.hpp"
+
+namespace rigflex::app {
+namespace {
+
+struct DiagnoseArgs {
+  std::string rig;
+  std::vector<std::string> data, effects, only;
+  std::string out;
+  double fit_window = 0;
+  int threads = 0;
+  bool quiet = false;
+};
+
+std::string effects_file_text(const rig::EffectFit& e) {
+  std::ostringstream s;
+  s << "# Fitted by rigflex diagnose: explains " << e.explained_fraction * 100 << " % of the residual"
+    << (e.significant ? " (significant)" : " (not significant)") << (e.plausible ? "" : "; IMPLAUSIBLE values")
+    << ".\n# " << e.advice << ".\neffects:\n";
+  std::istringstream lines(e.rig_block);
+  for (std::string line; std::getline(lines, line);) s << "  " << line << "\n";
+  return s.str();
+}
+
+int run(const DiagnoseArgs& a) {
+  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
+  rig::DiagnosisOptions o;
+  if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
+  o.threads = a.threads;
+  o.effects = a.only;
+  if (!a.quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "diagnose: %s\n", s.c_str()); };
+  try {
+    o.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--only: ") + e.what());
+  }
+  rig::Diagnosis d;
+  try {
+    d = rig::diagnose(mm.model, mm.pointers(), mm.sources(), o);
+  } catch (const rig::NoEquilibrium& e) {
+    throw io::no_equilibrium_error(a.rig, mm.model, e.what());
+  } catch (const rig::RecordError& e) {
+    rethrow_record_error(mm, e);
+  }
+  std::printf("%-28s %10s %12s %11s %9s\n", "effect", "explained", "significant", "plausible", "p-value");
+  for (const auto& e : d.ranking) {
+    std::printf("%-28s %9.4f%% %12s %11s %9.2g\n", e.effect.c_str(), 100 * e.explained_fraction,
+                e.significant ? "yes" : "no", e.plausible ? "yes" : "no", e.p_value);
+  }
+  std::printf("%s (baseline residual %.2f x the noise)\n", d.summary.c_str(), d.noise_ratio);
+  if (d.missing_effect) {
+    for (const auto& e : d.ranking) {
+      if (e.effect != *d.missing_effect) continue;
+      std::printf("fitted:\n%s", e.rig_block.c_str());
+      std::printf("to capture it properly: %s\n", e.advice.c_str());
+    }
+  }
+  io::CompareContext ctx;
+  ctx.rig = mm.model.name;
+  ctx.model_label = mm.label;
+  ctx.model_effects = mm.effect_names;
+  const std::filesystem::path out(a.out);
+  std::filesystem::create_directories(out / "effects");
+  io::FileBatch batch;
+  batch.add_text(out / "diagnosis.json", io::diagnosis_json(d, ctx).dump(2) + "\n");
+  // The baseline's spectra, trend and decay (diagnose already found the model's equilibrium).
+  std::optional<rig::ResidualAnalysis> baseline;
+  if (!d.baseline.empty()) baseline = rig::analyse_residuals(rig::ResponseModel(mm.model), d.baseline);
+  batch.add_text(out / "diagnosis.html", io::diagnosis_report(d, ctx, baseline ? &*baseline : nullptr).html());
+  for (const auto& e : d.ranking) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));
+  batch.commit();
+  std::printf("wrote %s/diagnosis.json, %s/diagnosis.html and the fitted effects in %s/effects\n", a.out.c_str(),
+              a.out.c_str(), a.out.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app, int& exit_code) {
+  auto* cmd = app.add_subcommand("diagnose", "Find the physical effect the rig model misses");
+  auto a = std::make_shared<DiagnoseArgs>();
+  cmd->add_option("rig", a->rig, "rig YAML file")->required();
+  cmd->add_option("data", a->data, "measurement files or set folders")->required();
+  cmd->add_option("--effects", a->effects, "YAML file with an `effects:` block added to the model first");
+  cmd->add_option("--only", a->only, "test only these effects (comma separated)")->delimiter(',');
+  cmd->add_option("--fit-window", a->fit_window, "seconds at the start of each record the swing state is first fitted to")
+      ->check(positive());
+  cmd->add_option("--threads", a->threads, "threads (0: all cores)");
+  cmd->add_option("--out", a->out, "output folder")->required();
+  cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
+  cmd->callback([a, &exit_code] { exit_code = run(*a); });
+}
+
+}  // namespace rigflex::app

@@ -1,0 +1,78 @@
+#include "rig/model_comparison.hpp"
+
+#include <cstdio>
+#include <mutex>
+
+#include "rig/identification_kinematics.hpp"
+#include "rig/identification_rig.hpp"
+#include "rig/parallel_for.hpp"
+
+namespace rigflex::rig {
+
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const VirtualHistory*>& records,
+                              const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
+  options.compare.validate();
+  if (records.empty()) throw std::invalid_argument("compare needs at least one history");
+  const int H = static_cast<int>(records.size());
+  const int n = m.system.rods();
+  ModelComparison c;
+  c.channels = channel_names(n);
+  c.histories.resize(records.size());
+  std::mutex progress;
+  int done = 0;
+  parallel_for(H, options.threads, [&](int j) {
+    const std::string source = j < static_cast<int>(sources.size()) ? sources[j] : "history " + std::to_string(j + 1);
+    try {
+      c.histories[j] = compare_history(m, *records[j], source, options.compare);
+    } catch (RecordError& e) {
+      e.set_history(j);
+      throw;
+    }
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress);
+      options.progress(++done, H);
+    }
+  });
+  c.nrmse = pooled_nrmse(c.histories);
+  c.overall_nrmse = rms_of(c.nrmse, 0, 3 * n);
+  c.force_nrmse = rms_of(c.nrmse, 0, n);
+  c.angle_nrmse = rms_of(c.nrmse, n, 2 * n);
+  c.raw_nrmse = pooled_nrmse(c.histories, true);
+  c.raw_overall_nrmse = rms_of(c.raw_nrmse, 0, 3 * n);
+  c.raw_force_nrmse = rms_of(c.raw_nrmse, 0, n);
+  c.analysis = analyse_residuals(m, c.histories);
+
+  for (const auto& h : c.histories) {
+    if (h.fit_window_nrmse > kFollowLimit) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "%s: the model does not follow the data from the start (NRMSE %.2f over the first %.1f s): check "
+                    "the rod order and encoder axes against the rig file, the units (N, rad, s), that the record "
+                    "starts after release, and run `rigflex diagnose` for a large missing effect",
+                    h.source.c_str(), h.fit_window_nrmse, options.compare.fit_window_s);
+      c.warnings.push_back(buf);
+    }
+  }
+
+  if (options.identify) {
+    const bool flexible = m.system.assembly().fixed_frame || m.system.assembly().carrying_frame ||
+                          !m.system.assembly().rod_stiffness.empty();
+    c.algorithm = flexible ? IdentificationAlgorithm::flexible : IdentificationAlgorithm::rigid;
+    try {
+      const IdentificationRig idr = identification_rig(m.system.model(), c.algorithm);
+      IdentificationResult r = identify(idr, records, {});
+      if (r.observable) {
+        c.identified = std::move(r);
+      } else {
+        c.identification_error = r.message;
+      }
+    } catch (const RecordError&) {
+      throw;
+    } catch (const std::exception& e) {
+      c.identification_error = e.what();
+    }
+  }
+  return c;
+}
+
+}  // namespace rigflex::rig

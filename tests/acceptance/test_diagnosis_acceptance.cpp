@@ -1,0 +1,254 @@
+// Issue 6's acceptance: for every effect of the catalogue, data simulated
+// with it (sensor noise on, random pushes), the starting model without it:
+// diagnose ranks it first; the fitted effect added to the model, the
+// swing-band force NRMSE falls at least 5x (the angles' for an effect that
+// shows far more in the angles) and the identified CoG height is within
+// 2 mm of the truth. Control data (nothing hidden): nothing significant.
+// Two effects at once: both in the top three. Real data's defects: a record
+// that starts mid-swing, another sample rate, a dropped sample, twice the
+// noise. The rig: a trifilar of 200 kg on 1 m rods (tests/rig), fast enough
+// to run the whole catalogue.
+//
+// Magnitudes: each hidden effect is large enough that the starting model's
+// force (angle) NRMSE is well above the noise's floor in the swing band
+// (about 0.006 here, 1 N on 20 N of swing): a 5x fall cannot be measured
+// below that, whatever the method.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "io/rig_reader.hpp"
+#include "rig/diagnosis.hpp"
+#include "rig/effects.hpp"
+#include "rig/joint_compliance.hpp"
+#include "rig/model_comparison.hpp"
+#include "../rig/rig_cases.hpp"
+
+namespace {
+
+using namespace rigflex;
+
+rig::RigModel start_model() { return test::noisy_trifilar(); }
+
+std::vector<rig::VirtualHistory> measure(const rig::RigModel& truth, std::uint64_t seed) {
+  rig::MeasurementOptions o;
+  o.histories = 6;
+  o.seed = seed;
+  return rig::simulate_measurement(rig::RigSystem(truth), o).front();
+}
+
+std::vector<const rig::VirtualHistory*> pointers(const std::vector<rig::VirtualHistory>& r) {
+  std::vector<const rig::VirtualHistory*> p;
+  for (const auto& x : r) p.push_back(&x);
+  return p;
+}
+
+struct Outcome {
+  rig::Diagnosis diagnosis;
+  double force_before = 0, force_after = 0, zG_error = 0;
+  double angle_before = 0, angle_after = 0;
+};
+
+// Diagnose, add the top effect's fitted rig block to the model through the
+// rig reader (as a user does with diagnose's effects file), compare again.
+Outcome run_loop(const rig::RigModel& start, const std::vector<rig::VirtualHistory>& data, double true_zG) {
+  Outcome o;
+  o.diagnosis = rig::diagnose(start, pointers(data), {}, {});
+  const rig::ModelComparison before = rig::compare_model(rig::ResponseModel(start), pointers(data), {}, {});
+  o.force_before = before.force_nrmse;
+  o.angle_before = before.angle_nrmse;
+  if (o.diagnosis.ranking.empty()) return o;
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / ("rigflex-accept-" + o.diagnosis.ranking.front().effect + ".yaml");
+  {
+    std::ofstream out(file);
+    out << "effects:\n";
+    std::istringstream lines(o.diagnosis.ranking.front().rig_block);
+    for (std::string line; std::getline(lines, line);) out << "  " << line << "\n";
+  }
+  rig::RigModel fitted = start;
+  io::add_effects(fitted, file);
+  std::filesystem::remove(file);
+  const rig::ModelComparison after = rig::compare_model(rig::ResponseModel(fitted), pointers(data), {}, {});
+  o.force_after = after.force_nrmse;
+  o.angle_after = after.angle_nrmse;
+  EXPECT_TRUE(after.identified.has_value()) << after.identification_error;
+  if (after.identified) o.zG_error = after.identified->properties.cog.z() - true_zG;
+  return o;
+}
+
+void print(const std::string& label, const Outcome& o) {
+  std::cout << label << ": " << o.diagnosis.summary << "; force NRMSE " << o.force_before << " -> " << o.force_after
+            << ", angle NRMSE " << o.angle_before << " -> " << o.angle_after << ", zG error " << 1e3 * o.zG_error
+            << " mm\n";
+  for (const auto& e : o.diagnosis.ranking) {
+    std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << "\n";
+  }
+}
+
+class HiddenEffect : public ::testing::TestWithParam<int> {};
+
+std::shared_ptr<const rig::Effect> hidden_effect(int which, const rig::RigModel& start) {
+  switch (which) {
+    case 0: {
+      rig::FixedJointCompliance c;
+      // 2-6 mm sideways and 1-2 mm down under a rod's 654 N.
+      c.joints = {rig::Vec3(3e-6, 9e-6, 1.5e-6), rig::Vec3(6e-6, 3e-6, 1.5e-6), rig::Vec3(3e-6, 6e-6, 3e-6)};
+      c.sway = Eigen::Vector2d(3e-6, 1.5e-6);
+      return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(start.geometry, 200.0, c));
+    }
+    case 1: {
+      rig::CarryingJointCompliance c;
+      c.translation = rig::Vec3(3e-6, 2e-6, 1e-6);
+      c.rocking = Eigen::Vector2d(4e-6, 2e-6);
+      return std::make_shared<rig::CarryingFrameFlexibility>(
+          rig::joint_compliance_carrying_frame(start.geometry, 200.0, c));
+    }
+    case 2:  // 2.6 mm stretch under 654 N: a long wire rope
+      return std::make_shared<rig::RodCompliance>(std::vector<double>{2.5e5, 2.5e5, 2.5e5});
+    case 3: return std::make_shared<rig::RodMass>(std::vector<double>{3.0, 3.0, 3.0});
+    case 4: {
+      rig::JointFrictionParameters f;
+      f.viscous = 0.3;
+      f.coulomb = 0.05;
+      return std::make_shared<rig::JointFriction>(f);
+    }
+    case 5:  // a light, bulky body: 10 m^2 of drag area on 200 kg
+      return std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 10.0, 30.0, std::nullopt});
+    case 6:
+      return std::make_shared<rig::EncoderOffset>(std::vector<double>{0.002, -0.001, 0.0},
+                                                  std::vector<double>{0.0, 0.001, -0.002});
+    case 7: return std::make_shared<rig::RodLengthError>(std::vector<double>{0.003, -0.002, 0.0});
+    case 8:
+      return std::make_shared<rig::JointPositionError>(
+          std::vector<rig::Vec3>{rig::Vec3(0.003, 0, 0), rig::Vec3(0, -0.003, 0.001), rig::Vec3(0.002, 0.002, 0)},
+          std::vector<rig::Vec3>(3, rig::Vec3::Zero()));
+    default:
+      return std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.02},
+                                                 std::vector<double>{5.0, 0.0, -5.0});
+  }
+}
+
+TEST_P(HiddenEffect, RankedFirstAndTheErrorFalls) {
+  const rig::RigModel start = start_model();
+  rig::RigModel truth = start;
+  truth.effects.push_back(hidden_effect(GetParam(), start));
+  const std::string name = truth.effects.back()->name();
+  const Outcome o = run_loop(start, measure(truth, 100 + GetParam()), start.body.cog.z());
+  print(name, o);
+  ASSERT_FALSE(o.diagnosis.ranking.empty());
+  EXPECT_EQ(o.diagnosis.ranking.front().effect, name);
+  ASSERT_TRUE(o.diagnosis.missing_effect.has_value());
+  EXPECT_EQ(*o.diagnosis.missing_effect, name);
+  // The 5x fall is asked of the force channels; an effect that shows far
+  // more in the angles than in the forces (encoder offsets change no force;
+  // drag damps the swing, which the forces show only at second order) is
+  // held to it in the angles, and its forces must not get worse.
+  if (o.force_before >= o.angle_before) {
+    EXPECT_GE(o.force_before / o.force_after, 5.0);
+  } else {
+    EXPECT_GE(o.angle_before / o.angle_after, 5.0);
+    EXPECT_LE(o.force_after, o.force_before);
+  }
+  EXPECT_LE(std::abs(o.zG_error), 0.002);
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, HiddenEffect, ::testing::Range(0, 10));
+
+// Control data: the starting model itself, two seeds, and once integrated
+// by CVODE's BDF instead of generalized-alpha (another simulator, as
+// independently generated data would be).
+TEST(DiagnosisAcceptance, ControlDataBlamesNothing) {
+  const rig::RigModel start = start_model();
+  for (std::uint64_t seed : {200u, 201u, 202u}) {
+    rig::RigModel truth = start;
+    if (seed == 202u) truth.simulation.method = rig::IntegrationMethod::bdf;
+    const auto data = measure(truth, seed);
+    const rig::Diagnosis d = rig::diagnose(start, pointers(data), {}, {});
+    std::cout << "control " << seed << ": " << d.summary << " (residual " << d.noise_ratio << " x noise)\n";
+    EXPECT_FALSE(d.missing_effect.has_value()) << *d.missing_effect;
+    for (const auto& e : d.ranking) EXPECT_FALSE(e.significant) << e.effect;
+  }
+}
+
+TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
+  const rig::RigModel start = start_model();
+  rig::RigModel truth = start;
+  truth.effects.push_back(hidden_effect(7, start));  // rod length error
+  truth.effects.push_back(hidden_effect(9, start));  // load cell gain
+  const auto data = measure(truth, 300);
+  const rig::Diagnosis d = rig::diagnose(start, pointers(data), {}, {});
+  std::vector<std::string> top;
+  for (size_t i = 0; i < std::min<size_t>(3, d.ranking.size()); ++i) top.push_back(d.ranking[i].effect);
+  std::cout << "two effects: " << d.summary << "; top 3:";
+  for (const auto& t : top) std::cout << " " << t;
+  std::cout << "\n";
+  EXPECT_NE(std::find(top.begin(), top.end(), "rod_length_error"), top.end());
+  EXPECT_NE(std::find(top.begin(), top.end(), "load_cell_gain"), top.end());
+}
+
+// Real data's defects, each on a record set with a hidden rod length error.
+enum class Defect { mid_swing, sample_rate, dropped_sample, double_noise };
+
+std::vector<rig::VirtualHistory> defective(Defect d) {
+  const rig::RigModel start = start_model();
+  rig::RigModel truth = start;
+  truth.effects.push_back(hidden_effect(7, start));
+  if (d == Defect::sample_rate) truth.sensors.sample_rate_hz = 487.0;
+  if (d == Defect::double_noise) {
+    truth.sensors.force_noise_n *= 2;
+    truth.sensors.angle_noise_rad *= 2;
+  }
+  std::vector<rig::VirtualHistory> data = measure(truth, 400);
+  for (auto& h : data) {
+    if (d == Defect::mid_swing) {
+      // The logger started 2.3 s into the free swing: the record's first
+      // sample is anywhere in a cycle; its clock starts at zero again.
+      const Eigen::Index k0 = 1150, n = h.t.size() - k0;
+      const double t0 = h.t(k0);
+      const Eigen::VectorXd t = h.t.tail(n).array() - t0;
+      h.t = t;
+      h.force = h.force.bottomRows(n).eval();
+      h.alpha = h.alpha.bottomRows(n).eval();
+      h.beta = h.beta.bottomRows(n).eval();
+    }
+    if (d == Defect::dropped_sample) {
+      const Eigen::Index drop = 3001, n = h.t.size();
+      auto cut = [&](Eigen::MatrixXd& m) {
+        Eigen::MatrixXd out(n - 1, m.cols());
+        out << m.topRows(drop), m.bottomRows(n - drop - 1);
+        m = out;
+      };
+      Eigen::MatrixXd t = h.t;
+      cut(t);
+      h.t = t.col(0);
+      cut(h.force);
+      cut(h.alpha);
+      cut(h.beta);
+    }
+  }
+  return data;
+}
+
+class RealDataDefect : public ::testing::TestWithParam<Defect> {};
+
+TEST_P(RealDataDefect, StillFindsTheRodLengthError) {
+  const rig::RigModel start = start_model();
+  const auto data = defective(GetParam());
+  const Outcome o = run_loop(start, data, start.body.cog.z());
+  print("defect " + std::to_string(static_cast<int>(GetParam())), o);
+  ASSERT_TRUE(o.diagnosis.missing_effect.has_value());
+  EXPECT_EQ(*o.diagnosis.missing_effect, "rod_length_error");
+  EXPECT_GE(o.force_before / o.force_after, 5.0);
+  EXPECT_LE(std::abs(o.zG_error), 0.002);
+}
+
+INSTANTIATE_TEST_SUITE_P(Robustness, RealDataDefect,
+                         ::testing::Values(Defect::mid_swing, Defect::sample_rate, Defect::dropped_sample,
+                                           Defect::double_noise));
+
+}  // namespace

@@ -1,0 +1,157 @@
+// `rigflex compare` and `rigflex diagnose` end to end on a small trifilar:
+// the files they write, the study folder, and bad input named by file,
+// line and key or column.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "apps/cli_support.hpp"
+
+namespace {
+
+using namespace rigflex::test;
+
+const char* kRig = R"(name: cli-trifilar
+geometry:
+  gravity: 9.81
+  reference_point: [0.0, 0.0, 0.0]
+  rods:
+    - {upper: [0.477668, 0.147760, 1.0], lower: [0.477668, 0.147760, 0.0], length: 1.0, encoder_axis: [0.955336489, 0.295520207, 0.0]}
+    - {upper: [-0.366798, 0.339793, 1.0], lower: [-0.366798, 0.339793, 0.0], length: 1.0, encoder_axis: [-0.733596251, 0.679585565, 0.0]}
+    - {upper: [-0.110870, -0.487553, 1.0], lower: [-0.110870, -0.487553, 0.0], length: 1.0, encoder_axis: [-0.221740238, -0.975105772, 0.0]}
+body:
+  mass: 200.0
+  cog: [0.05, -0.03, -0.2]
+  inertia: [18, 18, 36, 0, 0, 0]
+sensors:
+  sample_rate: 500
+  load_cell: {noise: 1.0}
+  encoder: {noise: 2.0e-5}
+)";
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+class CliCompare : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(fresh_dir("compare"));
+    fs::create_directories(*dir_);
+    std::ofstream(*dir_ / "rig.yaml") << kRig;
+    // The measured rig has a rod 3 mm too long.
+    std::ofstream(*dir_ / "truth.yaml") << kRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
+    const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 3 --duration 8 --seed 4 --out " +
+                         (*dir_ / "data").string() + " --quiet");
+    ASSERT_EQ(r.code, 0) << r.out;
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_;
+  }
+  static fs::path* dir_;
+  fs::path rig() const { return *dir_ / "rig.yaml"; }
+  std::string data() const { return (*dir_ / "data" / "set1").string(); }
+};
+fs::path* CliCompare::dir_ = nullptr;
+
+TEST_F(CliCompare, WritesTheComparisonTheReportAndTheStudy) {
+  const fs::path out = *dir_ / "cmp";
+  const CliRun r = run("compare " + rig().string() + " " + data() + " --study " + (*dir_ / "study").string() +
+                       " --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = read_json(out / "compare.json");
+  EXPECT_GT(j["overall_nrmse"].get<double>(), 0.0);
+  for (const char* ch : {"F1", "F2", "F3", "alpha1", "beta3"}) EXPECT_TRUE(j["nrmse"].contains(ch)) << ch;
+  EXPECT_EQ(j["histories"].size(), 3u);
+  EXPECT_TRUE(fs::exists(out / "compare.html"));
+  EXPECT_TRUE(fs::exists(out / "model" / "h1.csv"));
+  EXPECT_NE(r.out.find("<- this run"), std::string::npos);
+  // The same version again updates its entry; the effect added is a new version.
+  ASSERT_EQ(run("compare " + rig().string() + " " + data() + " --study " + (*dir_ / "study").string() + " --out " +
+                out.string() + " --quiet").code, 0);
+  std::ofstream(*dir_ / "fix.yaml") << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
+  const CliRun fixed = run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "fix.yaml").string() +
+                           " --study " + (*dir_ / "study").string() + " --out " + (*dir_ / "cmp2").string() + " --quiet");
+  ASSERT_EQ(fixed.code, 0) << fixed.out;
+  const auto study = read_json(*dir_ / "study" / "study.json");
+  ASSERT_EQ(study["versions"].size(), 2u);
+  EXPECT_EQ(study["versions"][1]["label"], "rig.yaml + fix.yaml");
+  EXPECT_LT(study["versions"][1]["force_nrmse"].get<double>(), 0.2 * study["versions"][0]["force_nrmse"].get<double>());
+}
+
+TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
+  const fs::path out = *dir_ / "diag";
+  const CliRun r = run("diagnose " + rig().string() + " " + data() +
+                       " --only rod_length_error,air_drag,load_cell_gain --out " + out.string() + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto j = read_json(out / "diagnosis.json");
+  EXPECT_EQ(j["missing_effect"], "rod_length_error");
+  EXPECT_EQ(j["ranking"].size(), 3u);
+  EXPECT_EQ(j["ranking"][0]["effect"], "rod_length_error");
+  EXPECT_TRUE(j["ranking"][0]["parameters"].contains("delta1"));
+  EXPECT_TRUE(fs::exists(out / "effects" / "rod_length_error.yaml"));
+  EXPECT_TRUE(fs::exists(out / "diagnosis.html"));
+  // The written effect file is a valid --effects file.
+  EXPECT_EQ(run("compare " + rig().string() + " " + data() + " --effects " + (out / "effects" / "rod_length_error.yaml").string() +
+                " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
+}
+
+TEST_F(CliCompare, BadInputIsNamed) {
+  // An unknown effect for --only.
+  CliRun r = run("diagnose " + rig().string() + " " + data() + " --only gravity_waves --out " + (*dir_ / "x").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("gravity_waves"), std::string::npos) << r.out;
+  // A fitted effect out of range: file, line and key.
+  std::ofstream(*dir_ / "bad.yaml") << "effects:\n  fixed_frame_flexibility:\n    joint_compliance:\n      joints: "
+                                       "[[1e-6, 1e-6, 1e-6], [1e-6, -1e-6, 1e-6], [1e-6, 1e-6, 1e-6]]\n";
+  r = run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "bad.yaml").string() + " --out " +
+          (*dir_ / "x").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("bad.yaml"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("joint_compliance.joints"), std::string::npos) << r.out;
+  // A record in degrees: the file, the line and what to check.
+  const fs::path deg = *dir_ / "deg";
+  fs::create_directories(deg);
+  {
+    std::ifstream in(data() + "/h1.csv");
+    std::ofstream outf(deg / "h1.csv");
+    std::string line;
+    bool header = false;
+    while (std::getline(in, line)) {
+      if (line.empty() || line[0] == '#' || !header) {
+        header = header || (!line.empty() && line[0] != '#');
+        outf << line << "\n";
+        continue;
+      }
+      // t,F1..F3,alpha1,beta1,...: scale every angle column by 180/pi.
+      std::stringstream ss(line);
+      std::string cell;
+      int col = 0;
+      std::string row;
+      while (std::getline(ss, cell, ',')) {
+        double v = std::stod(cell);
+        if (col >= 4) v *= 57.29577951308232;
+        row += (col ? "," : "") + std::to_string(v);
+        ++col;
+      }
+      outf << row << "\n";
+    }
+  }
+  r = run("compare " + rig().string() + " " + (deg / "h1.csv").string() + " --out " + (*dir_ / "x").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("h1.csv"), std::string::npos) << r.out;
+  EXPECT_TRUE(r.out.find("angle") != std::string::npos || r.out.find("encoder") != std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(*dir_ / "x" / "compare.json"));
+  // A record of a four-rod rig.
+  r = run("compare " + (std::string(RIGFLEX_SOURCE_DIR) + "/examples/small-rig/rig.yaml") + " " + data() + " --out " +
+          (*dir_ / "x").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.out.find("h1.csv"), std::string::npos) << r.out;
+}
+
+}  // namespace

@@ -1,0 +1,57 @@
+// Writes a command report (io/reports.hpp) from the synthetic results of
+// tests/support/synthetic_reports.hpp, for the browser test
+// (tests/browser/check_report.sh):
+//   make_compare_report compare OUT.html          9 plots: 2 histories x 9 channels x 7500 samples
+//   make_compare_report diagnosis OUT.html        7 plots: 3 ranked effects, baseline with its analysis
+//   make_compare_report identification OUT.html   2 plots: rigid and flexible, 5 sets, reference
+//   make_compare_report sweep OUT.html            2 plots: mass and stiffness sweeps
+// Prints the number of plots written.
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "io/reports.hpp"
+#include "support/synthetic_reports.hpp"
+
+namespace {
+
+using namespace rigflex;
+
+constexpr int kSamples = 7500;  // 15 s at 500 Hz
+constexpr double kStep = 0.002;
+constexpr int kBins = 2049;  // spectrum bins
+
+io::HtmlReport compare() {
+  rig::ModelComparison c = test::comparison(kSamples, kStep);
+  c.analysis = test::analysis(c.channels, kBins);
+  c.histories[1].source = "data/set1/h2 <odd> & \"quoted\".csv";  // escaped in the page
+  return io::compare_report(c, test::context(), test::study());
+}
+
+io::HtmlReport diagnosis() {
+  const rig::Diagnosis d = test::diagnosis(true, kSamples, kStep);
+  const rig::ResidualAnalysis a = test::analysis(rig::channel_names(test::kRods), kBins);
+  return io::diagnosis_report(d, test::context(), &a);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string kind = argc == 3 ? argv[1] : "";
+  if (kind != "compare" && kind != "diagnosis" && kind != "identification" && kind != "sweep") {
+    std::fprintf(stderr, "usage: make_compare_report compare|diagnosis|identification|sweep OUT.html\n");
+    return 2;
+  }
+  try {
+    const io::HtmlReport r = kind == "compare"     ? compare()
+                             : kind == "diagnosis" ? diagnosis()
+                             : kind == "sweep"     ? io::sweep_html("light-truck", test::sweep_points())
+                                                   : io::identification_html(test::identification(true));
+    r.write(argv[2]);
+    std::printf("%d\n", r.plot_count());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "make_compare_report: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
