@@ -65,6 +65,19 @@ void print_table(const rig::ModelComparison& c) {
   }
 }
 
+// The model's history beside each measured one: "<set folder>_<file>", so
+// h1.csv of set1 and of set2 do not collide (an index where folders share a name).
+std::string model_file_name(const MeasuredModel& mm, size_t i) {
+  auto name = [&](size_t k) {
+    return mm.files[k].parent_path().filename().string() + "_" + mm.files[k].filename().string();
+  };
+  const std::string mine = name(i);
+  for (size_t k = 0; k < mm.files.size(); ++k) {
+    if (k != i && name(k) == mine) return std::to_string(i + 1) + "_" + mine;
+  }
+  return mine;
+}
+
 int run(const CompareArgs& a) {
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
   io::CompareContext ctx;
@@ -94,17 +107,21 @@ int run(const CompareArgs& a) {
 
   nlohmann::ordered_json j = io::compare_json(c, ctx);
   std::vector<io::StudyEntry> entries;
+  io::StudyEntry study_entry;
   if (!a.study.empty()) {
-    io::StudyEntry e;
+    io::StudyEntry& e = study_entry;
     e.label = mm.label;
-    e.fingerprint = io::model_fingerprint(mm.model_files);
+    // A version: the model files, the options that change the errors, and the data compared with.
+    std::vector<std::filesystem::path> inputs = mm.model_files;
+    inputs.insert(inputs.end(), mm.files.begin(), mm.files.end());
+    e.fingerprint = io::model_fingerprint(inputs, "fit_window=" + std::to_string(o.compare.fit_window_s));
     e.effects = mm.effect_names;
     e.overall_nrmse = c.overall_nrmse;
     e.force_nrmse = c.force_nrmse;
     e.angle_nrmse = c.angle_nrmse;
     for (size_t i = 0; i < c.channels.size(); ++i) e.nrmse[c.channels[i]] = c.nrmse(static_cast<Eigen::Index>(i));
     if (c.identified) e.identified_cog_z = c.identified->properties.cog.z();
-    entries = io::record_in_study(a.study, e);
+    entries = io::study_with(a.study, e);
     nlohmann::ordered_json versions = nlohmann::ordered_json::array();
     std::printf("study %s:\n%-8s %-12s %-12s %s\n", a.study.c_str(), "version", "overall", "forces", "model");
     for (const auto& x : entries) {
@@ -125,9 +142,11 @@ int run(const CompareArgs& a) {
   const int rods = mm.model.geometry.rod_count();
   for (size_t i = 0; i < c.histories.size(); ++i) {
     const io::TimeHistory th = model_history(c.histories[i], rods, mm.label);
-    batch.add(out / "model" / mm.files[i].filename(), [th](const std::filesystem::path& p) { io::write_time_history(p, th); });
+    batch.add(out / "model" / model_file_name(mm, i), [th](const std::filesystem::path& p) { io::write_time_history(p, th); });
   }
   batch.commit();
+  // The study is written once the outputs are: a failed run leaves no entry.
+  if (!a.study.empty()) io::record_in_study(a.study, study_entry);
   std::printf("wrote %s/compare.json, %s/compare.html and %zu model histories in %s/model\n", a.out.c_str(),
               a.out.c_str(), c.histories.size(), a.out.c_str());
   return 0;

@@ -87,7 +87,10 @@ int run(const DiagnoseArgs& a) {
   std::optional<rig::ResidualAnalysis> baseline;
   if (!d.baseline.empty()) baseline = rig::analyse_residuals(rig::ResponseModel(mm.model), d.baseline);
   batch.add_text(out / "diagnosis.html", io::diagnosis_report(d, ctx, baseline ? &*baseline : nullptr).html());
-  for (const auto& e : d.ranking) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));
+  // A file per effect that the fit made an effect of (a compliance fitted to zero is none).
+  for (const auto& e : d.ranking) {
+    if (!e.rig_block.empty()) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));
+  }
   batch.commit();
   std::printf("wrote %s/diagnosis.json, %s/diagnosis.html and the fitted effects in %s/effects\n", a.out.c_str(),
               a.out.c_str(), a.out.c_str());

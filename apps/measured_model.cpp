@@ -49,7 +49,10 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
 }
 
 void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e) {
-  const auto i = static_cast<size_t>(std::max(0, e.history()));
+  if (e.history() < 0 || static_cast<size_t>(e.history()) >= mm.files.size()) {
+    throw io::InputError("(a measurement)", 0, e.channel(), e.what());
+  }
+  const auto i = static_cast<size_t>(e.history());
   const io::TimeHistory& h = mm.histories[i];
   const int line = e.sample() >= 0 ? h.header_line + 1 + static_cast<int>(e.sample()) : 0;
   throw io::InputError(mm.files[i].string(), line, e.channel(), e.what());

@@ -1,5 +1,6 @@
 #include "io/rig_reader.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -313,7 +314,7 @@ struct Reader {
       return v;
     };
     if (name == "fixed_frame_flexibility") {
-      ctx.expect_map(c, at, {"joints", "sway", "twist"});
+      within(at, [&] { ctx.expect_map(c, at, {"joints", "sway", "twist"}); });
       rig::FixedJointCompliance jc;
       jc.joints = within(at, [&] { return per_rod_vectors(c, "joints"); });
       for (const auto& v : jc.joints) non_negative(v, c["joints"], "joints");
@@ -324,7 +325,7 @@ struct Reader {
         return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(g, mass, jc));
       });
     }
-    ctx.expect_map(c, at, {"translation", "rocking"});
+    within(at, [&] { ctx.expect_map(c, at, {"translation", "rocking"}); });
     rig::CarryingJointCompliance jc;
     if (c["translation"]) jc.translation = ctx.vec3(c, "translation");
     non_negative(jc.translation, c["translation"], "translation");
@@ -337,6 +338,7 @@ struct Reader {
   // The `effects` mapping: every effect switched on, in the file's order.
   void effects(const YAML::Node& effects, rig::RigModel& model) const {
     if (!effects.IsMap()) ctx.fail(effects, "effects", "must be a mapping of effect name to parameters");
+    std::vector<std::string> seen;
     for (const auto& kv : effects) {
       const std::string name = kv.first.as<std::string>();
       const std::string key = "effects." + name;
@@ -350,6 +352,10 @@ struct Reader {
       // Checked before 'enabled': a misspelt effect switched off is still misspelt.
       if (!known) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + names + ")");
       if (!e.IsMap()) ctx.fail(e, key, "parameters must be a mapping");
+      if (std::find(seen.begin(), seen.end(), name) != seen.end()) ctx.fail(kv.first, key, "given twice");
+      seen.push_back(name);
+      // An effects file added to a model replaces the model's effect of that
+      // name (and `enabled: false` there removes it).
       std::erase_if(model.effects, [&](const auto& x) { return name == x->name(); });
       if (!within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
       model.effects.push_back(within(key, [&] { return effect(name, e, model.geometry); }));

@@ -1,5 +1,6 @@
 #include "io/study.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
@@ -11,17 +12,20 @@
 
 namespace rigflex::io {
 
-std::string model_fingerprint(const std::vector<std::filesystem::path>& files) {
+std::string model_fingerprint(const std::vector<std::filesystem::path>& files, const std::string& extra) {
   std::uint64_t h = 14695981039346656037ull;
-  for (const auto& f : files) {
-    std::ifstream in(f, std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + f.string());
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto mix = [&h](const std::string& text) {
     for (unsigned char c : text + '\0') {
       h ^= c;
       h *= 1099511628211ull;
     }
+  };
+  for (const auto& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw std::runtime_error("cannot read " + f.string());
+    mix(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   }
+  mix(extra);
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
@@ -31,21 +35,27 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
+double number_or_nan(const Json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::nan("");
+}
+
 StudyEntry from_json(const Json& j) {
   StudyEntry e;
   e.version = j.at("version").get<int>();
   e.label = j.at("label").get<std::string>();
   e.fingerprint = j.at("fingerprint").get<std::string>();
   e.effects = j.value("effects", std::vector<std::string>{});
-  e.overall_nrmse = j.at("overall_nrmse").get<double>();
-  e.force_nrmse = j.at("force_nrmse").get<double>();
-  e.angle_nrmse = j.at("angle_nrmse").get<double>();
-  for (const auto& [k, v] : j.at("nrmse").items()) e.nrmse[k] = v.get<double>();
+  e.overall_nrmse = number_or_nan(j, "overall_nrmse");
+  e.force_nrmse = number_or_nan(j, "force_nrmse");
+  e.angle_nrmse = number_or_nan(j, "angle_nrmse");
+  for (const auto& [k, v] : j.at("nrmse").items()) e.nrmse[k] = v.is_number() ? v.get<double>() : std::nan("");
   if (j.contains("identified_cog_z_m") && !j["identified_cog_z_m"].is_null()) {
     e.identified_cog_z = j["identified_cog_z_m"].get<double>();
   }
   return e;
 }
+
+Json finite_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 Json to_json(const StudyEntry& e) {
   Json j;
@@ -53,17 +63,19 @@ Json to_json(const StudyEntry& e) {
   j["label"] = e.label;
   j["fingerprint"] = e.fingerprint;
   j["effects"] = e.effects;
-  j["overall_nrmse"] = e.overall_nrmse;
-  j["force_nrmse"] = e.force_nrmse;
-  j["angle_nrmse"] = e.angle_nrmse;
-  j["nrmse"] = e.nrmse;
+  j["overall_nrmse"] = finite_or_null(e.overall_nrmse);
+  j["force_nrmse"] = finite_or_null(e.force_nrmse);
+  j["angle_nrmse"] = finite_or_null(e.angle_nrmse);
+  Json n = Json::object();
+  for (const auto& [k, v] : e.nrmse) n[k] = finite_or_null(v);
+  j["nrmse"] = n;
   j["identified_cog_z_m"] = e.identified_cog_z ? Json(*e.identified_cog_z) : Json(nullptr);
   return j;
 }
 
 }  // namespace
 
-std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, StudyEntry entry) {
+std::vector<StudyEntry> study_with(const std::filesystem::path& dir, const StudyEntry& added) {
   const std::filesystem::path file = dir / "study.json";
   std::vector<StudyEntry> entries;
   if (std::filesystem::exists(file)) {
@@ -75,6 +87,7 @@ std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, StudyE
       throw InputError(file.string(), 0, "versions", std::string("not a study file: ") + e.what());
     }
   }
+  StudyEntry entry = added;
   bool found = false;
   for (auto& e : entries) {
     if (e.fingerprint == entry.fingerprint) {
@@ -87,11 +100,16 @@ std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, StudyE
     entry.version = static_cast<int>(entries.size()) + 1;
     entries.push_back(entry);
   }
+  return entries;
+}
+
+std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, const StudyEntry& entry) {
+  const std::vector<StudyEntry> entries = study_with(dir, entry);
   std::filesystem::create_directories(dir);
   Json j;
   j["versions"] = Json::array();
   for (const auto& e : entries) j["versions"].push_back(to_json(e));
-  write_text_atomically(file, j.dump(2) + "\n");
+  write_text_atomically(dir / "study.json", j.dump(2) + "\n");
   return entries;
 }
 

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "rig/encoder.hpp"
+#include "rig/equilibrium.hpp"
 #include "rig/identification_kinematics.hpp"
 #include "rig/pose_fit.hpp"
 
@@ -68,8 +69,21 @@ Eigen::VectorXd channel_noise(const Eigen::MatrixXd& channels) {
     d3.reserve(static_cast<size_t>(std::max<Eigen::Index>(x.size() - 3, 0)));
     for (Eigen::Index k = 0; k + 3 < x.size(); ++k) d3.push_back(std::abs(x(k + 3) - 3 * x(k + 2) + 3 * x(k + 1) - x(k)));
     const double mad = median(d3);
+    // Quantized data (an encoder of few bits against a slow swing) can make
+    // most third differences exactly zero: the quantization noise, step /
+    // sqrt(12) with the step the smallest nonzero change between samples,
+    // is then the floor; with no median either, the RMS of the differences.
+    double quantum = INFINITY, sum2 = 0;
+    for (Eigen::Index k = 0; k + 1 < x.size(); ++k) {
+      const double dx = std::abs(x(k + 1) - x(k));
+      if (dx > 0) quantum = std::min(quantum, dx);
+    }
+    for (double v : d3) sum2 += v * v;
+    double s = 1.4826 * mad / std::sqrt(20.0);
+    if (std::isfinite(quantum)) s = std::max(s, quantum / std::sqrt(12.0));
+    if (s <= 0 && !d3.empty()) s = std::sqrt(sum2 / static_cast<double>(d3.size()) / 20.0);
     const double scale = std::max(x.cwiseAbs().maxCoeff(), 1e-300);
-    sigma(c) = std::max(1.4826 * mad / std::sqrt(20.0), 1e-9 * scale);
+    sigma(c) = std::max(s, 1e-9 * scale);
   }
   return sigma;
 }
@@ -130,7 +144,7 @@ SwingFit fit_swing_state(const ResponseModel& m, const BandTarget& target, const
     }
     const Eigen::MatrixXd JtJ = J.transpose() * J;
     const Eigen::VectorXd g = J.transpose() * r;
-    bool improved = false;
+    bool improved = false, any_evaluated = false;
     for (int tries = 0; tries < 8 && !improved; ++tries) {
       Eigen::MatrixXd A = JtJ;
       A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12 * JtJ.diagonal().maxCoeff());
@@ -143,6 +157,7 @@ SwingFit fit_swing_state(const ResponseModel& m, const BandTarget& target, const
         lambda *= 10;  // a state the rig cannot hold: shorten the step
         continue;
       }
+      any_evaluated = true;
       const double c_trial = r_trial.squaredNorm();
       if (c_trial < cost) {
         const double drop = (cost - c_trial) / cost;
@@ -156,7 +171,10 @@ SwingFit fit_swing_state(const ResponseModel& m, const BandTarget& target, const
         lambda *= 10;
       }
     }
-    if (!improved) fit.converged = true;  // no descent left at any damping: a minimum to working precision
+    // No descent left at any damping: a minimum to working precision (not
+    // when every trial state was one the rig could not hold).
+    if (!improved) fit.converged = any_evaluated;
+    if (!improved) break;
     if (fit.converged) break;
   }
   fit.whitened_rms = std::sqrt(cost / static_cast<double>(r.size()));
@@ -267,8 +285,18 @@ HistoryComparison compare_history(const ResponseModel& m, const VirtualHistory& 
   HistoryComparison h;
   h.source = source;
   h.target = band_target(m, record);
-  const SwingState guess = swing_state_from_encoders(m, h.t(), h.measured());
-  h.fit = fit_swing_state(m, h.target, guess, options);
+  // The encoders' guess may be a state the rig cannot hold (a record that
+  // fits the rig badly): then from rest, else the record is named.
+  try {
+    h.fit = fit_swing_state(m, h.target, swing_state_from_encoders(m, h.t(), h.measured()), options);
+  } catch (const NoEquilibrium&) {
+    try {
+      h.fit = fit_swing_state(m, h.target, SwingState::Zero(), options);
+    } catch (const NoEquilibrium& e) {
+      throw std::invalid_argument(source + ": no swing state of the rig starts this record (" + e.what() +
+                                  "): check the record against the rig file");
+    }
+  }
   h.elastic = fit_elastic_state(m, h.target, h.fit.state, options.fit_window_s);
   h.model = predict_channels(m, h.fit.state, h.t(), h.elastic);
   h.band_model = band_filter(h.target.band, h.model, h.target.at);
@@ -293,7 +321,9 @@ Eigen::VectorXd pooled_nrmse(const std::vector<HistoryComparison>& hs, bool raw)
     }
   }
   Eigen::VectorXd e(channels);
-  for (Eigen::Index c = 0; c < channels; ++c) e(c) = var(c) > 0 ? std::sqrt(res2(c) / var(c)) : 0.0;
+  for (Eigen::Index c = 0; c < channels; ++c) {
+    e(c) = var(c) > 0 ? std::sqrt(res2(c) / var(c)) : (res2(c) > 0 ? INFINITY : 0.0);  // as nrmse_of
+  }
   return e;
 }
 

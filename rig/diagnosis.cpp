@@ -12,6 +12,7 @@
 #include "rig/effect_candidates.hpp"
 #include "rig/effects.hpp"
 #include "rig/equilibrium.hpp"
+#include "rig/identification_kinematics.hpp"
 #include "rig/parallel_for.hpp"
 
 namespace rigflex::rig {
@@ -334,7 +335,13 @@ Diagnosis diagnose(const RigModel& model, const std::vector<const VirtualHistory
   d.baseline.resize(records.size());
   say("fitting the swing states of " + std::to_string(H) + " histories");
   parallel_for(H, options.threads, [&](int j) {
-    d.baseline[j] = compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "", options.compare);
+    try {
+      d.baseline[j] = compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "",
+                                      options.compare);
+    } catch (RecordError& e) {
+      e.set_history(j);
+      throw;
+    }
   });
   std::vector<const BandTarget*> targets;
   std::vector<SwingState> states;
@@ -361,7 +368,8 @@ Diagnosis diagnose(const RigModel& model, const std::vector<const VirtualHistory
   d.residual = rss;
   d.samples = 0;
   for (const auto& x : r) d.samples += static_cast<double>(x.size());
-  d.independence = targets.front()->band.independence();
+  d.independence = 0;
+  for (const auto* t : targets) d.independence += t->band.independence() / static_cast<double>(targets.size());
   d.noise_ratio = d.residual / d.samples;
   const double dof_base = d.independence * (d.samples - 6.0 * H / d.independence);
 
@@ -410,7 +418,7 @@ Diagnosis diagnose(const RigModel& model, const std::vector<const VirtualHistory
     ef.residual = cost;
     ef.states = s;
     ef.explained_fraction = rss > 0 ? std::max(0.0, (rss - cost) / rss) : 0.0;
-    // Standard deviations from the first linearization: the noise-weighted
+    // Standard deviations from the last linearization: the noise-weighted
     // residual has unit variance per sample at the noise, the band's samples
     // are correlated (1 / independence), and a misfit left over scales it up.
     const double dof = dof_base - p;
@@ -434,7 +442,7 @@ Diagnosis diagnose(const RigModel& model, const std::vector<const VirtualHistory
     ef.significant = d.noise_ratio > 1.0 + options.noise_excess && ef.p_value < options.significance &&
                      ef.explained_fraction >= options.min_explained &&
                      (rss - cost) >= options.min_excess_share * excess;
-    ef.rig_block = c.rig_block(theta);
+    if (c.make(theta)) ef.rig_block = c.rig_block(theta);  // none when the fit amounts to no effect
     d.ranking.push_back(std::move(ef));
   }
 

@@ -73,7 +73,7 @@ struct EffectFit {
   double f_statistic = 0, p_value = 1;
   bool significant = false, plausible = true;
   int refinements = 0;
-  std::string rig_block;                 // YAML under `effects:` with the fitted values
+  std::string rig_block;                 // YAML under `effects:` with the fitted values; empty: no effect
   std::string advice;
   std::string note;                      // why a refinement stopped, if it did
   std::vector<SwingState> states;        // refitted swing states per history

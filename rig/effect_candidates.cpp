@@ -45,6 +45,7 @@ CandidateContext candidate_context(const RigSystem& rig, double lowest_swing_hz)
   c.geometry = rig.assembly().geometry;
   c.rods = rig.rods();
   c.suspended_mass = rig.suspended_mass();
+  c.body_mass = rig.assembly().body.mass;
   c.weight_per_rod = rig.suspended_weight() / c.rods;
   Vec3 centroid = Vec3::Zero();
   for (const auto& r : c.geometry.rods) {
@@ -90,7 +91,7 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& x) {
       Eigen::VectorXd size = p.cwiseMax(0.0);
       size(3 * n + 2) *= rho * rho;
       if (size.maxCoeff() < 1e-2 * c_probe) return nullptr;
-      return std::make_shared<FixedFrameFlexibility>(joint_compliance_fixed_frame(x.geometry, x.suspended_mass, fixed(p)));
+      return std::make_shared<FixedFrameFlexibility>(joint_compliance_fixed_frame(x.geometry, x.body_mass, fixed(p)));
     };
     e.rig_block = [fixed](const Eigen::VectorXd& p) {
       const FixedJointCompliance f = fixed(p);
@@ -124,7 +125,7 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& x) {
       size.tail<2>() *= rho * rho;
       if (size.maxCoeff() < 1e-2 * c_probe) return nullptr;
       return std::make_shared<CarryingFrameFlexibility>(
-          joint_compliance_carrying_frame(x.geometry, x.suspended_mass, carrying(p)));
+          joint_compliance_carrying_frame(x.geometry, x.body_mass, carrying(p)));
     };
     e.rig_block = [carrying](const Eigen::VectorXd& p) {
       const CarryingJointCompliance c = carrying(p);

@@ -31,7 +31,8 @@ namespace rigflex::rig {
 // What the parameterizations are scaled by: the rig being diagnosed.
 struct CandidateContext {
   RigGeometry geometry;        // as assembled (geometry errors the model has included)
-  double suspended_mass = 0;   // kg
+  double suspended_mass = 0;   // kg, body and the rods' moving shares
+  double body_mass = 0;        // kg: what a rig file's joint-compliance frame takes (io/rig_reader)
   double weight_per_rod = 0;   // N
   double rod_length = 0;       // mean, m
   double swing_omega = 0;      // rad/s, lowest swing mode

@@ -44,13 +44,16 @@ ModelComparison compare_model(const ResponseModel& m, const std::vector<const Vi
 
   for (const auto& h : c.histories) {
     if (h.fit_window_nrmse > kFollowLimit) {
-      char buf[400];
-      std::snprintf(buf, sizeof buf,
-                    "%s: the model does not follow the data from the start (NRMSE %.2f over the first %.1f s): check "
-                    "the rod order and encoder axes against the rig file, the units (N, rad, s), that the record "
-                    "starts after release, and run `rigflex diagnose` for a large missing effect",
-                    h.source.c_str(), h.fit_window_nrmse, options.compare.fit_window_s);
-      c.warnings.push_back(buf);
+      char figures[64];
+      std::snprintf(figures, sizeof figures, "NRMSE %.2f over the first %.1f s", h.fit_window_nrmse,
+                    options.compare.fit_window_s);
+      c.warnings.push_back(h.source + ": the model does not follow the data from the start (" + figures +
+                           "): check the rod order and encoder axes against the rig file, the units (N, rad, s), "
+                           "that the record starts after release, and run `rigflex diagnose` for a large missing "
+                           "effect");
+    }
+    if (!h.fit.converged) {
+      c.warnings.push_back(h.source + ": the swing state fit did not converge");
     }
   }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Runs body(i) for i in [0, count) on up to `threads` threads (0: the
-// hardware's), each index exactly once. The first exception thrown by any
-// body is rethrown after all threads have stopped; the remaining indices are
-// then skipped.
+// hardware's), each index exactly once. After an exception the remaining
+// indices are skipped; once all threads have stopped, the exception of the
+// lowest index that threw is rethrown (which one does not depend on timing
+// among those that ran).
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -19,6 +20,7 @@ void parallel_for(int count, int threads, Body body) {
   std::atomic<int> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;
+  int error_index = count;
   std::mutex error_mutex;
   auto work = [&] {
     for (int i = next++; i < count && !failed; i = next++) {
@@ -26,7 +28,7 @@ void parallel_for(int count, int threads, Body body) {
         body(i);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
+        if (i < error_index) error = std::current_exception(), error_index = i;
         failed = true;
       }
     }

@@ -214,23 +214,41 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
   }
   a.extra_decay_rate = extra;
 
-  // Spectra: segments of about 8 s (a power of two), the record's length at most.
+  // Spectra: segments of about 8 s (a power of two, the record's length at
+  // most), on the first record's frequency axis; a record at another rate
+  // has its own segments, its spectrum interpolated onto that axis.
+  auto segment_for = [](double step, Eigen::Index length) {
+    int seg = 16;
+    while (seg * 2 <= length && seg * 2 * step <= 8.0 + 1e-9) seg *= 2;
+    return seg;
+  };
   const double h = hs.front().target.record.step_s;
-  Eigen::Index shortest = hs.front().t().size();
-  for (const auto& x : hs) shortest = std::min(shortest, x.t().size());
-  int seg = 16;
-  while (seg * 2 <= shortest && seg * 2 * h <= 8.0 + 1e-9) seg *= 2;
+  const int seg = segment_for(h, hs.front().t().size());
   const int bins = seg / 2 + 1;
   auto& s = a.spectra;
   s.frequency_hz = Eigen::VectorXd::LinSpaced(bins, 0.0, 0.5 / h);
   s.residual_force = s.residual_angle = s.measured_force = s.measured_angle = Eigen::VectorXd::Zero(bins);
+  auto onto_axis = [&](const Eigen::VectorXd& psd, double step, int own_seg) {
+    if (own_seg == seg && step == h) return psd;
+    Eigen::VectorXd out(bins);
+    const double df = 1.0 / (own_seg * step);
+    for (int k = 0; k < bins; ++k) {
+      const double x = s.frequency_hz(k) / df;
+      const int i = std::min(static_cast<int>(x), static_cast<int>(psd.size()) - 2);
+      const double w = std::clamp(x - i, 0.0, 1.0);
+      out(k) = x > psd.size() - 1 ? 0.0 : (1 - w) * psd(i) + w * psd(i + 1);
+    }
+    return out;
+  };
   for (const auto& x : hs) {
+    const double hx = x.target.record.step_s;
+    const int sx = segment_for(hx, x.t().size());
     const Eigen::MatrixXd r = x.residual();
     for (int c = 0; c < C; ++c) {
       const bool force = c < n;
       const double norm = 1.0 / (static_cast<double>(hs.size()) * (force ? n : 2 * n));
-      (force ? s.residual_force : s.residual_angle) += norm * welch(r.col(c), seg, h);
-      (force ? s.measured_force : s.measured_angle) += norm * welch(x.measured().col(c), seg, h);
+      (force ? s.residual_force : s.residual_angle) += norm * onto_axis(welch(r.col(c), sx, hx), hx, sx);
+      (force ? s.measured_force : s.measured_angle) += norm * onto_axis(welch(x.measured().col(c), sx, hx), hx, sx);
     }
   }
   auto peaks = [&](const Eigen::VectorXd& psd, const std::string& group) {
@@ -269,13 +287,14 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
         const Eigen::VectorXd al = x.model.col(n + rod), be = x.model.col(2 * n + rod);
         if ((be.array() - be.mean()).square().sum() > (al.array() - al.mean()).square().sum()) angle = 2 * n + rod;
       }
+      const double hx = x.target.record.step_s;
       const Eigen::VectorXd th = x.model.col(angle);
-      const Eigen::VectorXd v = derivative(th, h);
+      const Eigen::VectorXd v = derivative(th, hx);
       res.push_back(x.residual().col(c));
       st[0].push_back(th);
       st[1].push_back(v);
       st[2].push_back(v.array().sign().matrix());
-      st[3].push_back(derivative(v, h));
+      st[3].push_back(derivative(v, hx));
       st[4].push_back(x.model.col(rod));
       total += x.t().size();
     }

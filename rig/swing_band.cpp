@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 namespace rigflex::rig {
 
@@ -16,6 +17,10 @@ SwingBand swing_band(double step_s, double highest_swing_hz) {
   // Pass up to 1.25 x the highest swing mode, stop from 3 x (where a rig
   // that meets the 3-4x design rule has its first deformation mode).
   const double pass = 1.25 * highest_swing_hz, stop = std::min(3.0 * highest_swing_hz, 0.4 * fs);
+  if (!(stop > pass)) {
+    throw std::invalid_argument("a sample rate of " + std::to_string(fs) + " Hz is too low for the swing band (needs > " +
+                                std::to_string(3.2 * highest_swing_hz) + " Hz)");
+  }
   b.cutoff_hz = 0.5 * (pass + stop);
   const double transition = stop - pass;
   // Kaiser window for 60 dB in the stop band (Kaiser's formulas).

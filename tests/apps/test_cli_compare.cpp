@@ -69,7 +69,7 @@ TEST_F(CliCompare, WritesTheComparisonTheReportAndTheStudy) {
   for (const char* ch : {"F1", "F2", "F3", "alpha1", "beta3"}) EXPECT_TRUE(j["nrmse"].contains(ch)) << ch;
   EXPECT_EQ(j["histories"].size(), 3u);
   EXPECT_TRUE(fs::exists(out / "compare.html"));
-  EXPECT_TRUE(fs::exists(out / "model" / "h1.csv"));
+  EXPECT_TRUE(fs::exists(out / "model" / "set1_h1.csv"));
   EXPECT_NE(r.out.find("<- this run"), std::string::npos);
   // The same version again updates its entry; the effect added is a new version.
   ASSERT_EQ(run("compare " + rig().string() + " " + data() + " --study " + (*dir_ / "study").string() + " --out " +

@@ -275,5 +275,46 @@ TEST(RigReader, EmptyName) {
   expect_error(bad, "name:", "name", "empty");
 }
 
+// Frames given by their joint compliance (rig/joint_compliance.hpp), as
+// `rigflex diagnose` writes them, and the checks of such blocks.
+TEST(RigReader, FramesByJointCompliance) {
+  const std::string fixed = std::string(kValid) +
+                            "  fixed_frame_flexibility:\n    joint_compliance:\n      joints: [[1e-6, 2e-6, 3e-7], "
+                            "[1e-6, 2e-6, 3e-7], [1e-6, 2e-6, 3e-7]]\n      sway: [1e-6, 0]\n      twist: 1e-6\n"
+                            "  carrying_frame_flexibility:\n    joint_compliance: {translation: [1e-6, 1e-6, 5e-7], "
+                            "rocking: [1e-6, 2e-6]}\n";
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", fixed);
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_NE(m.effect("fixed_frame_flexibility"), nullptr);
+  EXPECT_NE(m.effect("carrying_frame_flexibility"), nullptr);
+  expect_error(replace_first(fixed, "[1e-6, 2e-6, 3e-7], [1e-6", "[1e-6, -2e-6, 3e-7], [1e-6"), "      joints:",
+               "effects.fixed_frame_flexibility.joint_compliance.joints", ">= 0");
+  expect_error(replace_first(fixed, "      twist: 1e-6", "      spin: 1e-6"), "      spin:",
+               "effects.fixed_frame_flexibility.joint_compliance.spin", "");
+}
+
+// An effect given twice in one rig file is an error, not the last one winning.
+TEST(RigReader, AnEffectGivenTwiceIsRefused) {
+  const std::string twice = std::string(kValid) + "  encoder_offset: {alpha: 0.0, beta: 0.0}\n";
+  expect_error(twice, "  encoder_offset: {alpha: 0.0", "effects.encoder_offset", "given twice");
+}
+
+// An effects file replaces the model's effect of the same name; `enabled: false` removes it.
+TEST(RigReader, EffectsFilesReplaceByName) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", kValid);
+  rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  const size_t before = m.effects.size();
+  test::write_text(dir.path() / "more.yaml", "effects:\n  rod_mass: {mass: 2.0}\n  encoder_offset: {enabled: false}\n");
+  io::add_effects(m, dir.path() / "more.yaml");
+  EXPECT_EQ(m.effects.size(), before);  // one added, one removed
+  EXPECT_NE(m.effect("rod_mass"), nullptr);
+  EXPECT_EQ(m.effect("encoder_offset"), nullptr);
+  test::write_text(dir.path() / "bad.yaml", "rod_mass: {mass: 2.0}\n");
+  EXPECT_THROW(io::add_effects(m, dir.path() / "bad.yaml"), io::InputError);
+}
+
 }  // namespace
 }  // namespace rigflex
+
