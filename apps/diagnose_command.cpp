@@ -7,7 +7,6 @@
 // `rigflex compare --effects` or to paste into the rig file.
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <sstream>
 
 #include "apps/commands.hpp"
@@ -18,7 +17,6 @@
 #include "io/rig_reader.hpp"
 #include "rig/diagnosis.hpp"
 #include "rig/equilibrium.hpp"
-#include "rig/residual_analysis.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -83,10 +81,7 @@ int run(const DiagnoseArgs& a) {
   std::filesystem::create_directories(out / "effects");
   io::FileBatch batch;
   batch.add_text(out / "diagnosis.json", io::diagnosis_json(d, ctx).dump(2) + "\n");
-  // The baseline's spectra, trend and decay (diagnose already found the model's equilibrium).
-  std::optional<rig::ResidualAnalysis> baseline;
-  if (!d.baseline.empty()) baseline = rig::analyse_residuals(rig::ResponseModel(mm.model), d.baseline);
-  batch.add_text(out / "diagnosis.html", io::diagnosis_report(d, ctx, baseline ? &*baseline : nullptr).html());
+  batch.add_text(out / "diagnosis.html", io::diagnosis_report(d, ctx, &d.baseline_analysis).html());
   // A file per effect that the fit made an effect of (a compliance fitted to zero is none).
   for (const auto& e : d.ranking) {
     if (!e.rig_block.empty()) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));

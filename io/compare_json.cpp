@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "io/json_write.hpp"
 #include "io/mass_record.hpp"
 
 namespace rigflex::io {
@@ -9,23 +10,21 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json number(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
-
 Json array(const Eigen::VectorXd& v) {
   Json a = Json::array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(number(v(i)));
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(finite_or_null(v(i)));
   return a;
 }
 
 Json array(const std::vector<double>& v) {
   Json a = Json::array();
-  for (double x : v) a.push_back(number(x));
+  for (double x : v) a.push_back(finite_or_null(x));
   return a;
 }
 
 Json per_channel(const std::vector<std::string>& names, const Eigen::VectorXd& v) {
   Json o = Json::object();
-  for (size_t i = 0; i < names.size(); ++i) o[names[i]] = number(v(static_cast<Eigen::Index>(i)));
+  for (size_t i = 0; i < names.size(); ++i) o[names[i]] = finite_or_null(v(static_cast<Eigen::Index>(i)));
   return o;
 }
 
@@ -63,11 +62,11 @@ Json compare_json(const rig::ModelComparison& c, const CompareContext& x) {
   j["model"] = x.model_label;
   j["model_effects"] = x.model_effects;
   j["channels"] = c.channels;
-  j["overall_nrmse"] = number(c.overall_nrmse);
-  j["force_nrmse"] = number(c.force_nrmse);
-  j["angle_nrmse"] = number(c.angle_nrmse);
+  j["overall_nrmse"] = finite_or_null(c.overall_nrmse);
+  j["force_nrmse"] = finite_or_null(c.force_nrmse);
+  j["angle_nrmse"] = finite_or_null(c.angle_nrmse);
   j["nrmse"] = per_channel(c.channels, c.nrmse);
-  j["raw"] = {{"overall_nrmse", number(c.raw_overall_nrmse)}, {"force_nrmse", number(c.raw_force_nrmse)},
+  j["raw"] = {{"overall_nrmse", finite_or_null(c.raw_overall_nrmse)}, {"force_nrmse", finite_or_null(c.raw_force_nrmse)},
               {"nrmse", per_channel(c.channels, c.raw_nrmse)}};
   j["swing_band"] = {{"cutoff_hz", c.histories.front().target.band.cutoff_hz},
                      {"kernel_s", static_cast<double>(c.histories.front().target.band.kernel.size()) *
@@ -81,18 +80,18 @@ Json compare_json(const rig::ModelComparison& c, const CompareContext& x) {
     o["sample_interval_s"] = h.target.record.step_s;
     o["nrmse"] = per_channel(c.channels, h.nrmse);
     const Eigen::Index n = h.nrmse.size() / 3;
-    o["overall_nrmse"] = number(rig::rms_of(h.nrmse, 0, h.nrmse.size()));
-    o["force_nrmse"] = number(rig::rms_of(h.nrmse, 0, n));
+    o["overall_nrmse"] = finite_or_null(rig::rms_of(h.nrmse, 0, h.nrmse.size()));
+    o["force_nrmse"] = finite_or_null(rig::rms_of(h.nrmse, 0, n));
     o["raw_nrmse"] = per_channel(c.channels, h.raw_nrmse);
-    o["fit_window_nrmse"] = number(h.fit_window_nrmse);
+    o["fit_window_nrmse"] = finite_or_null(h.fit_window_nrmse);
     Json el = Json::array();
     for (Eigen::Index k = 0; k < h.elastic.amplitude.size(); ++k) {
-      el.push_back({{"amplitude", number(h.elastic.amplitude(k))}, {"rate", number(h.elastic.rate(k))}});
+      el.push_back({{"amplitude", finite_or_null(h.elastic.amplitude(k))}, {"rate", finite_or_null(h.elastic.rate(k))}});
     }
     o["elastic_state"] = el;
     o["swing_state"] = state_json(h.fit.state);
     o["fit"] = {{"iterations", h.fit.iterations}, {"converged", h.fit.converged},
-                {"band_residual_to_noise", number(h.fit.whitened_rms)}};
+                {"band_residual_to_noise", finite_or_null(h.fit.whitened_rms)}};
     o["noise"] = per_channel(c.channels, h.target.sigma);
     hs.push_back(o);
   }
@@ -107,34 +106,34 @@ Json compare_json(const rig::ModelComparison& c, const CompareContext& x) {
   w["static_offset_in_noise"] = per_channel(c.channels, a.offset_in_noise);
   w["lag1_autocorrelation"] = per_channel(c.channels, a.lag1);
   w["trend"] = {{"t_s", array(a.trend_t)}, {"overall_nrmse", array(a.trend_nrmse)},
-                {"slope_per_s", number(a.trend_slope)}};
+                {"slope_per_s", finite_or_null(a.trend_slope)}};
   Json windows = Json::array();
   for (const auto& x2 : a.windows) {
     windows.push_back({{"history", x2.history + 1}, {"t_start_s", x2.t_start}, {"t_end_s", x2.t_end},
-                       {"share", number(x2.share)}});
+                       {"share", finite_or_null(x2.share)}});
   }
   w["windows"] = windows;
   Json decay = Json::array();
   for (const auto& d : a.decay) {
-    decay.push_back({{"history", d.history + 1}, {"measured_rate_per_s", number(d.measured_rate)},
-                     {"model_rate_per_s", number(d.model_rate)}});
+    decay.push_back({{"history", d.history + 1}, {"measured_rate_per_s", finite_or_null(d.measured_rate)},
+                     {"model_rate_per_s", finite_or_null(d.model_rate)}});
   }
   w["decay"] = decay;
-  w["extra_decay_rate_per_s"] = number(a.extra_decay_rate);
+  w["extra_decay_rate_per_s"] = finite_or_null(a.extra_decay_rate);
   Json corr = Json::object();
   for (const auto& s : a.correlations) {
-    corr[s.state] = {{"largest", number(s.largest)}, {"channel", s.channel}, {"per_channel", per_channel(c.channels, s.per_channel)}};
+    corr[s.state] = {{"largest", finite_or_null(s.largest)}, {"channel", s.channel}, {"per_channel", per_channel(c.channels, s.per_channel)}};
   }
   w["state_correlation"] = corr;
   Json modes = Json::array();
   for (size_t k = 0; k < a.mode_frequencies_hz.size(); ++k) {
-    modes.push_back({{"frequency_hz", number(a.mode_frequencies_hz[k])}, {"kind", a.mode_kinds[k]}});
+    modes.push_back({{"frequency_hz", finite_or_null(a.mode_frequencies_hz[k])}, {"kind", a.mode_kinds[k]}});
   }
   w["model_modes"] = modes;
   Json peaks = Json::array();
   for (const auto& p : a.spectra.peaks) {
-    peaks.push_back({{"group", p.group}, {"frequency_hz", number(p.frequency_hz)}, {"amplitude", number(p.amplitude)},
-                     {"nearest_mode_hz", number(p.nearest_mode_hz)}});
+    peaks.push_back({{"group", p.group}, {"frequency_hz", finite_or_null(p.frequency_hz)}, {"amplitude", finite_or_null(p.amplitude)},
+                     {"nearest_mode_hz", finite_or_null(p.nearest_mode_hz)}});
   }
   w["spectrum_peaks"] = peaks;
   {
@@ -160,24 +159,24 @@ Json diagnosis_json(const rig::Diagnosis& d, const CompareContext& x) {
   j["model_effects"] = d.present;
   j["missing_effect"] = d.missing_effect ? Json(*d.missing_effect) : Json(nullptr);
   j["summary"] = d.summary;
-  j["baseline"] = {{"residual_to_noise", number(d.noise_ratio)}, {"band_samples", d.samples},
-                   {"independent_share", number(d.independence)}};
+  j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)}, {"band_samples", d.samples},
+                   {"independent_share", finite_or_null(d.independence)}};
   Json ranking = Json::array();
   for (const auto& e : d.ranking) {
     Json o;
     o["effect"] = e.effect;
-    o["explained_fraction"] = number(e.explained_fraction);
+    o["explained_fraction"] = finite_or_null(e.explained_fraction);
     o["significant"] = e.significant;
     o["plausible"] = e.plausible;
     Json params = Json::object();
     for (const auto& p : e.parameters) {
-      params[p.name] = {{"value", number(p.value)}, {"std", number(p.std)}, {"unit", p.unit},
-                        {"plausible_range", {number(p.low), number(p.high)}}, {"plausible", p.plausible}};
+      params[p.name] = {{"value", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
+                        {"plausible_range", {finite_or_null(p.low), finite_or_null(p.high)}}, {"plausible", p.plausible}};
     }
     o["parameters"] = params;
-    o["linear_explained_fraction"] = number(e.linear_explained_fraction);
-    o["f_statistic"] = number(e.f_statistic);
-    o["p_value"] = number(e.p_value);
+    o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
+    o["f_statistic"] = finite_or_null(e.f_statistic);
+    o["p_value"] = finite_or_null(e.p_value);
     o["refinements"] = e.refinements;
     o["advice"] = e.advice;
     o["rig_block"] = e.rig_block;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/json_write.hpp"
 #include "io/mass_record.hpp"
 #include "rig/rig_model.hpp"
 
@@ -168,7 +169,7 @@ nlohmann::ordered_json IdentificationReport::json() const {
       const auto& names = rig::mass_component_names();
       for (size_t i = 0; i < 9; ++i) {
         cmp.push_back({{"component", names[i]},
-                       {"t", std::isfinite(tests[i].t) ? Json(tests[i].t) : Json(nullptr)},
+                       {"t", finite_or_null(tests[i].t)},
                        {"degrees_of_freedom", tests[i].degrees_of_freedom},
                        {"p_value", tests[i].p_value},
                        {"significant", tests[i].significant}});

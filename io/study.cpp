@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/json_write.hpp"
 
 namespace rigflex::io {
 
@@ -54,8 +55,6 @@ StudyEntry from_json(const Json& j) {
   }
   return e;
 }
-
-Json finite_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 Json to_json(const StudyEntry& e) {
   Json j;

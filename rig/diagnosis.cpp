@@ -343,6 +343,7 @@ Diagnosis diagnose(const RigModel& model, const std::vector<const VirtualHistory
       throw;
     }
   });
+  d.baseline_analysis = analyse_residuals(base, d.baseline);
   std::vector<const BandTarget*> targets;
   std::vector<SwingState> states;
   for (const auto& h : d.baseline) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "rig/compare.hpp"
+#include "rig/residual_analysis.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::rig {
@@ -81,6 +82,7 @@ struct EffectFit {
 
 struct Diagnosis {
   std::vector<HistoryComparison> baseline;  // compare's result per history
+  ResidualAnalysis baseline_analysis;       // where the starting model fails (spectra, trend, decay)
   double residual = 0;                      // baseline noise-weighted sum of squares (states refitted)
   double samples = 0;                       // residual terms (band samples x channels)
   double independence = 1;                  // independent share of the band samples
