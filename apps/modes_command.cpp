@@ -1,4 +1,4 @@
-// rigflex modes MODEL.yaml [--count N] [--out DIR]: natural frequencies,
+// rigflex modes MODEL.yaml [--count N] [--out DIR] [--block B]: natural frequencies,
 // modal masses, effective mass fractions; modes.json and ParaView files.
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +19,7 @@ struct ModesArgs {
   int count = 10;
   std::string out;
   std::optional<double> shift_hz;
+  int block = 0;
   bool quiet = false;
 };
 
@@ -40,6 +41,7 @@ int run(const ModesArgs& args) {
   const io::ModelFile m = io::read_model(args.model);
   reduction::EigenOptions opt;
   opt.count = args.count;
+  opt.block_size = args.block;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
   if (!args.quiet)
     opt.progress = [](const reduction::EigenProgress& p) {
@@ -80,6 +82,9 @@ void add_modes_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(CLI::PositiveNumber);
   cmd->add_option("--out", args->out, "folder for modes.json, modes.pvd and mode_NNN.vtu");
   cmd->add_option("--shift-hz", args->shift_hz, "spectral shift as a frequency: sigma = -(2 pi f)^2");
+  cmd->add_option("--block", args->block,
+                  "Lanczos block size; 0 (default): chosen from the fill of the factor, see docs/eigen-solver.md")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }

@@ -88,10 +88,11 @@ using bench::seconds_since;
 struct Options {
   std::vector<long> sizes{10000, 100000};
   int modes = 20;
-  // Lanczos block size. 4: from about 50k DOFs up, one 4-column solve
-  // costs about 1.8 single ones here and the block iteration wins
-  // (measured: 2.9 s against 3.2 s at 100k); below, block 1 is faster.
-  int block = 4;
+  // Lanczos block size; 0: the solver's automatic choice (4 on this plate
+  // from about 40k DOFs, where one 4-column solve costs about 1.8 single
+  // ones and the block iteration wins; 1 below). Each row reports the size
+  // used.
+  int block = 0;
   int repeat = 1;  // rigflex eigen and floor timings: best of `repeat` (the machine is shared)
   bool ccx = true, scipy = true, keep = false;
   long max_peer_dofs = 150000;
@@ -259,6 +260,7 @@ struct Row {
   double assembly_peak_mb = 0, eigen_base_mb = 0, eigen_peak_mb = 0;  // VmHWM per phase, VmRSS before eigen
   std::string load;
   long applications = 0;
+  int block = 0;  // Lanczos block size used
   int restarts = 0, converged = 0;
   bool peak_reset = false;
   std::optional<double> ccx_s, ccx_rss_mb, ccx_diff, scipy_s, scipy_rss_mb, scipy_diff, scipy_residual;
@@ -301,6 +303,7 @@ Row run_size(long target, const Options& o) {
   row.peak_mb = std::max(row.assembly_peak_mb, row.eigen_peak_mb);
   row.factor = r.factor_seconds;
   row.applications = r.operator_applications;
+  row.block = r.block_size;
   row.restarts = r.restarts;
   row.converged = r.converged_count;
   row.max_residual = r.residuals.size() ? r.residuals.maxCoeff() : NAN;
@@ -328,7 +331,7 @@ Row run_size(long target, const Options& o) {
     // The solves the Lanczos made: its applications in blocks of the block
     // size, then the purification of the converged vectors, one solve with
     // that many columns.
-    const long b = std::max(1, o.block);
+    const long b = std::max(1, r.block_size);
     const long purified = r.converged_count;
     const long iteration = r.operator_applications - purified;
     std::vector<long> widths;
@@ -425,15 +428,15 @@ std::string fmt_e(double v) {
 
 void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& out) {
   const char* threads = std::getenv("OPENBLAS_NUM_THREADS");
-  out << "\n### Clamped 1 m x 1 m x 10 mm steel plate, MITC4, " << o.modes << " modes, block size " << o.block
-      << ", rigflex times best of " << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset")
+  out << "\n### Clamped 1 m x 1 m x 10 mm steel plate, MITC4, " << o.modes << " modes, block size "
+      << (o.block > 0 ? std::to_string(o.block) : std::string("automatic")) << ", rigflex times best of " << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset")
       << "\n\n";
-  out << "| DOFs | n x n | assembly s | factor s | eigen s | floor s | eigen/floor | ccx s | ccx/rigflex | "
+  out << "| DOFs | n x n | block | assembly s | factor s | eigen s | floor s | eigen/floor | ccx s | ccx/rigflex | "
                "scipy s | scipy/rigflex | peak RSS MB | eigen peak MB | factor MB | eigen peak/factor | max residual |\n";
-  out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     const double total = r.assembly + r.eigen;
-    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << fmt(r.assembly) << " | " << fmt(r.factor)
+    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << r.block << " | " << fmt(r.assembly) << " | " << fmt(r.factor)
               << " | " << fmt(r.eigen) << " | " << fmt(r.floor()) << " | " << fmt(r.eigen / r.floor()) << " | "
               << (r.ccx_s ? fmt(*r.ccx_s, 1) : r.ccx_note.empty() ? "-" : r.ccx_note) << " | "
               << (r.ccx_s ? fmt(*r.ccx_s / total, 1) : "-") << " | "
@@ -459,8 +462,7 @@ void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& 
               << (r.scipy_residual ? fmt_e(*r.scipy_residual) : "-") << " | " << r.load << " |\n";
   }
   out << "\nfloor = factorize_shifted(K, M, sigma) + the solves of the Lanczos on a fresh factor: (operator "
-         "applications - converged) / block solves of "
-      << o.block << " column(s), one of `converged` columns (the purification). eigen = wall of solve_lanczos "
+         "applications - converged) / block solves of `block` column(s), one of `converged` columns (the purification). eigen = wall of solve_lanczos "
          "(its own factorization included). "
          "ccx/rigflex = ccx wall / (assembly + eigen); ccx ran with "
       << o.ccx_threads

@@ -15,10 +15,10 @@
 namespace rigflex::bench {
 
 // n x n MITC4 elements over 1 m x 1 m x 10 mm, all edges clamped; interior
-// nodes carry 6 DOFs: 6 (n-1)^2.
+// nodes carry 6 DOFs: 6 (n-1)^2. quadratic: 8-node elements instead.
 inline int divisions_for(long dofs) { return static_cast<int>(std::lround(std::sqrt(dofs / 6.0))) + 1; }
 
-inline fe::Model clamped_plate(int n) {
+inline fe::Model clamped_plate(int n, bool quadratic = false) {
   fe::Model m;
   m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
   m.shell_sections["plate"] = {"plate", "steel", 0.010};
@@ -27,11 +27,12 @@ inline fe::Model clamped_plate(int n) {
   p.id = "plate";
   p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(1, 0, 0), fe::Vec3(1, 1, 0), fe::Vec3(0, 1, 0)};
   p.nx = p.ny = n;
+  p.quadratic = quadratic;
   p.section = "plate";
   const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
   for (int r = 0; r < g.rows; ++r)
     for (int c = 0; c < g.cols; ++c)
-      if (r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1)
+      if ((r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1) && g.at(r, c) != 0)  // 0: no node there
         m.supports.push_back({"edge", g.at(r, c), {true, true, true, true, true, true}});
   return m;
 }

@@ -2,7 +2,8 @@
 # Runs the clamped-plate benchmark (bench/bench_plate_modes.cpp) the way its
 # table in docs/eigen-solver.md was produced: all peers up to 150k DOFs,
 # rigflex alone above (pass --max-peer-dofs to change that); rigflex timings
-# are the best of two runs; Lanczos block size 4 unless --block is given.
+# are the best of two runs; the Lanczos block size is the solver's automatic
+# choice unless --block is given (the table reports the size used).
 # The machine should be otherwise idle (the table reports the load average
 # at the start of each size). Everything runs on one thread unless
 # OPENBLAS_NUM_THREADS is set: CalculiX (--ccx-threads 1), SciPy and

@@ -36,6 +36,7 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
             {"requested", r.requested},
             {"converged_count", r.converged_count},
             {"shift", r.shift},
+            {"block_size", r.block_size},
             {"restarts", r.restarts},
             {"operator_applications", r.operator_applications},
             {"max_residual", r.residuals.size() ? r.residuals.maxCoeff() : 0.0},

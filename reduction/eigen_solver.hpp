@@ -42,10 +42,12 @@ struct EigenOptions {
   // Convergence of Ritz pair i on the transformed problem:
   // |beta_m s_mi| <= tolerance * |theta_i|.
   double tolerance = 1e-10;
-  int subspace = 0;  // Lanczos basis size, 0 = auto: max(2 count, count + 20, count + 2 block_size), capped at n
+  int subspace = 0;  // Lanczos basis size, 0 = auto: max(2 count, count + 20, count + 2 block), capped at n
   int max_restarts = 200;
   unsigned seed = 1;   // deterministic start vectors
-  int block_size = 1;  // 1: single-vector Lanczos; > 1: block Lanczos, one multi-RHS solve per block
+  // 1: single-vector Lanczos; > 1: block Lanczos, one multi-RHS solve per
+  // block; 0: automatic, from the fill of the factor (automatic_block_size).
+  int block_size = 0;
   // After convergence, restart once from a fresh random block orthogonal to
   // the converged vectors and confirm that no eigenvalue below the highest
   // wanted one was missed (Krylov methods can miss copies of a repeated
@@ -57,8 +59,9 @@ struct EigenOptions {
 
   // Throws std::invalid_argument naming the offending option.
   void validate(Eigen::Index n) const;
-  // Basis size actually used for a problem of size n.
-  int resolved_subspace(Eigen::Index n) const;
+  // Basis size actually used for a problem of size n and block size `block`
+  // (block_size, or the automatic choice when block_size is 0).
+  int resolved_subspace(Eigen::Index n, int block) const;
 };
 
 struct EigenResult {
@@ -85,6 +88,7 @@ struct EigenResult {
   Eigen::VectorXd backward_errors;
   double orthogonality_error = 0;  // max |X' M X - I|
   double shift = 0;
+  int block_size = 0;  // the Lanczos block size used (0 for the dense path)
   int restarts = 0;
   long operator_applications = 0;  // applications of (K - sigma M)^-1 M to a vector
   double factor_seconds = 0, iteration_seconds = 0;
@@ -106,6 +110,25 @@ struct EigenResult {
 // as their pivots (~|sigma| times the rigid-body mass) stay well above
 // rounding. factorize_pencil checks that and retries at 1000 sigma if not.
 double default_shift(const SpMat& K, const SpMat& M);
+
+// Automatic block size (EigenOptions::block_size = 0). A block of b vectors
+// costs one b-column solve, which reads the factor L once for all b columns
+// (a 4-column solve cost 1.8 single ones on a 100k-DOF plate), but the block
+// iteration needs more applications (1.5x on plates, 2-2.3x on spectra with
+// many close modes: a 3D lattice, a box girder) and each application also
+// costs orthogonalization against the basis, ~ n x basis. The rule reads the
+// fill ratio nnz(L) / (n x basis), basis that of the single-vector iteration
+// for `count` pairs, and takes 4 inside a band measured by
+// bench/bench_block_size (docs/eigen-solver.md): below it (beam frames,
+// small shell meshes) the solves are too cheap to pay for the extra
+// applications; above it (3D fill) the extra applications of the clustered
+// spectra such models have outweighed the cheaper solves. Deterministic: it
+// depends on the factor's structure only, never on timings.
+inline constexpr double kAutomaticBlockFillRatio = 2.2;     // from here ...
+inline constexpr double kAutomaticBlockFillRatioEnd = 6.0;  // ... to below here
+inline constexpr int kAutomaticBlock = 4;
+double block_fill_ratio(Eigen::Index n, double factor_nnz, int count);
+int automatic_block_size(Eigen::Index n, double factor_nnz, int count);
 
 // Factorization of K - sigma M for the Lanczos, with the checks above.
 struct PencilFactorization {

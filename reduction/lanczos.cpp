@@ -20,11 +20,21 @@ namespace {
 using Eigen::Index;
 using Eigen::MatrixXd;
 
-detail::LanczosSettings settings_from(const EigenOptions& options, Index n) {
+// The block size asked for, or the automatic one for this factor. A given
+// subspace must leave room for two automatic blocks beyond the wanted pairs,
+// else the iteration stays single-vector: with less, thick restarts keep
+// almost the whole basis and the block iteration stalls.
+int resolved_block(const EigenOptions& options, Index n, const SparseCholesky& factor) {
+  if (options.block_size > 0) return options.block_size;
+  const int automatic = automatic_block_size(n, factor.statistics().factor_nnz, options.count);
+  return options.subspace == 0 || options.subspace >= options.count + 2 * automatic ? automatic : 1;
+}
+
+detail::LanczosSettings settings_from(const EigenOptions& options, Index n, const SparseCholesky& factor) {
   detail::LanczosSettings s;
   s.count = options.count;
-  s.block = options.block_size;
-  s.basis = options.resolved_subspace(n);
+  s.block = resolved_block(options, n, factor);
+  s.basis = options.resolved_subspace(n, static_cast<int>(s.block));
   s.tolerance = options.tolerance;
   s.max_restarts = options.max_restarts;
   s.verify = options.verify_multiplicities;
@@ -68,8 +78,9 @@ EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
   EigenResult r;
   r.requested = options.count;
   r.shift = factored ? *factored : *options.shift;
-  detail::LanczosOutcome outcome =
-      detail::thick_restart_lanczos(M, factor_at_shift, settings_from(options, K.rows()));
+  const detail::LanczosSettings settings = settings_from(options, K.rows(), factor_at_shift);
+  r.block_size = static_cast<int>(settings.block);
+  detail::LanczosOutcome outcome = detail::thick_restart_lanczos(M, factor_at_shift, settings);
   r.vectors = std::move(outcome.X);
   r.converged = outcome.converged;
   r.message = std::move(outcome.message);

@@ -44,6 +44,19 @@ TEST(Cli, ModesOfTheShellPlateExample) {
   const CliRun r = run("modes " + example("shell-plate") + " --count 4 --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(out / "mode_004.vtu"));
+  const nlohmann::json automatic = nlohmann::json::parse(std::ifstream(out / "modes.json"));
+  // --block sets the Lanczos block size; the modes agree to the solver's
+  // tolerance (1e-10 on the transformed problem; 1e-9 leaves room for the
+  // different Krylov spaces).
+  const CliRun blocked = run("modes " + example("shell-plate") + " --count 4 --block 3 --quiet --out " + out.string());
+  ASSERT_EQ(blocked.code, 0) << blocked.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "modes.json"));
+  EXPECT_EQ(j["solver"]["block_size"].get<int>(), 3);
+  EXPECT_EQ(automatic["solver"]["block_size"].get<int>(), 1);  // a small plate: single vector
+  for (size_t k = 0; k < 4; ++k)
+    EXPECT_NEAR(j["frequencies_hz"][k].get<double>(), automatic["frequencies_hz"][k].get<double>(),
+                1e-9 * automatic["frequencies_hz"][k].get<double>());
+  EXPECT_NE(run("modes " + example("shell-plate") + " --block -1 --quiet").code, 0);
   fs::remove_all(out);
 }
 

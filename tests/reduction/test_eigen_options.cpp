@@ -38,7 +38,7 @@ TEST(EigenOptions, InvalidValuesThrowNamingTheOption) {
   expect_rejected(with([&](EigenOptions& o) { o.tolerance = nan; }), 100, "tolerance");
   expect_rejected(with([](EigenOptions& o) { o.tolerance = 1.0; }), 100, "tolerance");
   expect_rejected(with([&](EigenOptions& o) { o.shift = inf; }), 100, "shift");
-  expect_rejected(with([](EigenOptions& o) { o.block_size = 0; }), 100, "block_size");
+  expect_rejected(with([](EigenOptions& o) { o.block_size = -1; }), 100, "block_size");
   expect_rejected(with([](EigenOptions& o) { o.block_size = 101; }), 100, "block_size");
   expect_rejected(with([](EigenOptions& o) { o.subspace = 10; }), 100, "subspace");
   expect_rejected(with([](EigenOptions& o) { o.max_restarts = -1; }), 100, "max_restarts");
@@ -57,13 +57,29 @@ TEST(EigenOptions, SolversValidateBeforeWorking) {
 
 TEST(EigenOptions, ResolvedSubspace) {
   EigenOptions o;
-  EXPECT_EQ(o.resolved_subspace(1000), 30);  // max(2 * 10, 10 + 20)
-  EXPECT_EQ(o.resolved_subspace(25), 25);    // capped at n
+  EXPECT_EQ(o.resolved_subspace(1000, 1), 30);  // max(2 * 10, 10 + 20)
+  EXPECT_EQ(o.resolved_subspace(25, 1), 25);    // capped at n
   o.count = 8;
-  o.block_size = 4;
-  EXPECT_EQ(o.resolved_subspace(8), 12);  // room for count + one block
+  EXPECT_EQ(o.resolved_subspace(8, 4), 12);  // room for count + one block
+  o.count = 20;
+  EXPECT_EQ(o.resolved_subspace(1000, 12), 44);  // count + 2 blocks
   o.subspace = 40;
-  EXPECT_EQ(o.resolved_subspace(8), 40);
+  EXPECT_EQ(o.resolved_subspace(8, 4), 40);
+}
+
+TEST(EigenOptions, AutomaticBlockSizeFollowsTheFillRatio) {
+  EXPECT_EQ(EigenOptions{}.block_size, 0);  // automatic by default
+  // count 20: basis 40, so the ratio is nnz(L) / (40 n).
+  const Eigen::Index n = 100000;
+  EXPECT_DOUBLE_EQ(block_fill_ratio(n, 40.0 * n * 1.5, 20), 1.5);
+  const double threshold_nnz = kAutomaticBlockFillRatio * 40.0 * n;
+  EXPECT_EQ(automatic_block_size(n, 0.99 * threshold_nnz, 20), 1);
+  EXPECT_EQ(automatic_block_size(n, 1.01 * threshold_nnz, 20), kAutomaticBlock);
+  const double end_nnz = kAutomaticBlockFillRatioEnd * 40.0 * n;
+  EXPECT_EQ(automatic_block_size(n, 0.99 * end_nnz, 20), kAutomaticBlock);
+  EXPECT_EQ(automatic_block_size(n, 1.01 * end_nnz, 20), 1);
+  // Tiny problems keep the single vector whatever their fill.
+  EXPECT_EQ(automatic_block_size(20, 20.0 * 20, 3), 1);
 }
 
 TEST(EigenResult, FrequenciesInHertz) {

@@ -347,5 +347,52 @@ TEST(LanczosAutomatic, SmallProblemsUseTheDenseSolver) {
   EXPECT_EQ(automatic.operator_applications, 0);
 }
 
+// block_size 0: the block size comes from the fill of the factor and is
+// reported. A chain's factor is a band (fill ratio far below the threshold),
+// a random pencil's nearly dense (far above), so the two take the two
+// branches; both must still match the oracle.
+TEST(LanczosAutomatic, BlockSizeFromTheFactorsFill) {
+  struct Case {
+    const char* name;
+    Pencil pencil;
+    int count;
+    int expected_block;
+  };
+  const Case cases[] = {{"chain", testing::spring_chain(600, 1.0, 1.0, false), 8, 1},
+                        {"random", testing::random_pencil(300, 41, false), 12, kAutomaticBlock}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    EigenOptions o;
+    o.count = c.count;
+    o.method = EigenMethod::lanczos;
+    ASSERT_EQ(o.block_size, 0);
+    const double shift = default_shift(c.pencil.K, c.pencil.M);
+    SparseCholesky factor;
+    ASSERT_TRUE(factor.factorize_shifted(c.pencil.K, c.pencil.M, shift).ok);
+    const Index n = c.pencil.K.rows();
+    EXPECT_EQ(automatic_block_size(n, factor.statistics().factor_nnz, c.count), c.expected_block)
+        << "fill ratio " << block_fill_ratio(n, factor.statistics().factor_nnz, c.count);
+    const EigenResult r = solve_lanczos(c.pencil.K, c.pencil.M, o);
+    EXPECT_EQ(r.block_size, c.expected_block);
+    expect_matches_oracle(c.pencil, r, oracle(c.pencil, c.count, shift), c.count, 0.0);
+  }
+}
+
+TEST(LanczosAutomatic, BlockSizeFitsAGivenSubspace) {
+  // The random pencil takes the block (test above) when the subspace is free;
+  // a given one needs room for two blocks beyond the 12 wanted pairs.
+  const Pencil p = testing::random_pencil(300, 41, false);
+  for (const int subspace : {19, 20}) {
+    SCOPED_TRACE(subspace);
+    EigenOptions o;
+    o.count = 12;
+    o.subspace = subspace;
+    o.method = EigenMethod::lanczos;
+    const EigenResult r = solve_lanczos(p.K, p.M, o);
+    EXPECT_EQ(r.block_size, subspace >= 12 + 2 * kAutomaticBlock ? kAutomaticBlock : 1);
+    expect_matches_oracle(p, r, oracle(p, 12, default_shift(p.K, p.M)), 12, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace rigflex::reduction
