@@ -429,14 +429,15 @@ std::string fmt_e(double v) {
 void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& out) {
   const char* threads = std::getenv("OPENBLAS_NUM_THREADS");
   out << "\n### Clamped 1 m x 1 m x 10 mm steel plate, MITC4, " << o.modes << " modes, block size "
-      << (o.block > 0 ? std::to_string(o.block) : std::string("automatic")) << ", rigflex times best of " << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset")
-      << "\n\n";
+      << (o.block > 0 ? std::to_string(o.block) : std::string("automatic")) << ", rigflex times best of "
+      << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset") << "\n\n";
   out << "| DOFs | n x n | block | assembly s | factor s | eigen s | floor s | eigen/floor | ccx s | ccx/rigflex | "
                "scipy s | scipy/rigflex | peak RSS MB | eigen peak MB | factor MB | eigen peak/factor | max residual |\n";
   out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     const double total = r.assembly + r.eigen;
-    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << r.block << " | " << fmt(r.assembly) << " | " << fmt(r.factor)
+    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << r.block << " | " << fmt(r.assembly) << " | "
+        << fmt(r.factor)
               << " | " << fmt(r.eigen) << " | " << fmt(r.floor()) << " | " << fmt(r.eigen / r.floor()) << " | "
               << (r.ccx_s ? fmt(*r.ccx_s, 1) : r.ccx_note.empty() ? "-" : r.ccx_note) << " | "
               << (r.ccx_s ? fmt(*r.ccx_s / total, 1) : "-") << " | "
@@ -462,7 +463,8 @@ void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& 
               << (r.scipy_residual ? fmt_e(*r.scipy_residual) : "-") << " | " << r.load << " |\n";
   }
   out << "\nfloor = factorize_shifted(K, M, sigma) + the solves of the Lanczos on a fresh factor: (operator "
-         "applications - converged) / block solves of `block` column(s), one of `converged` columns (the purification). eigen = wall of solve_lanczos "
+         "applications - converged) / block solves of `block` column(s), one of `converged` columns (the "
+         "purification). eigen = wall of solve_lanczos "
          "(its own factorization included). "
          "ccx/rigflex = ccx wall / (assembly + eigen); ccx ran with "
       << o.ccx_threads

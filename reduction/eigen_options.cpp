@@ -28,13 +28,19 @@ void EigenOptions::validate(Eigen::Index n) const {
   require(block_size <= n, "block_size (" + std::to_string(block_size) +
                                ") exceeds the number of DOFs (" + std::to_string(n) + ")");
   // An automatic block size falls back to 1 when a given subspace lacks room
-  // for it (see lanczos.cpp).
+  // for it (resolved_block).
   const int least_block = std::max(block_size, 1);
   require(subspace == 0 || subspace >= count + least_block,
           "subspace must be 0 (automatic) or at least count + block_size (" +
               std::to_string(count + least_block) + "), got " + std::to_string(subspace));
   require(max_restarts >= 0, "max_restarts must not be negative");
   require(dense_threshold >= 0, "dense_threshold must not be negative");
+}
+
+int EigenOptions::resolved_block(Eigen::Index n, double factor_nnz) const {
+  if (block_size > 0) return block_size;
+  const int automatic = automatic_block_size(n, factor_nnz, count);
+  return subspace == 0 || subspace >= count + 2 * automatic ? automatic : 1;
 }
 
 int EigenOptions::resolved_subspace(Eigen::Index n, int block) const {

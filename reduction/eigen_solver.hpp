@@ -59,8 +59,14 @@ struct EigenOptions {
 
   // Throws std::invalid_argument naming the offending option.
   void validate(Eigen::Index n) const;
+  // Block size actually used on a factor with factor_nnz nonzeros:
+  // block_size, or automatic_block_size when it is 0. A given subspace must
+  // leave room for two automatic blocks beyond the wanted pairs, else the
+  // iteration stays single-vector: with less, thick restarts keep almost
+  // the whole basis and the block iteration stalls.
+  int resolved_block(Eigen::Index n, double factor_nnz) const;
   // Basis size actually used for a problem of size n and block size `block`
-  // (block_size, or the automatic choice when block_size is 0).
+  // (from resolved_block).
   int resolved_subspace(Eigen::Index n, int block) const;
 };
 
@@ -114,8 +120,8 @@ double default_shift(const SpMat& K, const SpMat& M);
 // Automatic block size (EigenOptions::block_size = 0). A block of b vectors
 // costs one b-column solve, which reads the factor L once for all b columns
 // (a 4-column solve cost 1.8 single ones on a 100k-DOF plate), but the block
-// iteration needs more applications (1.5x on plates, 2-2.3x on spectra with
-// many close modes: a 3D lattice, a box girder) and each application also
+// iteration needs more applications (1.5x on plates, 1.7-2.3x on spectra
+// with many close modes: a ladder, a box girder, a 3D lattice) and each application also
 // costs orthogonalization against the basis, ~ n x basis. The rule reads the
 // fill ratio nnz(L) / (n x basis), basis that of the single-vector iteration
 // for `count` pairs, and takes 4 inside a band measured by

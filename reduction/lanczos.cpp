@@ -20,20 +20,10 @@ namespace {
 using Eigen::Index;
 using Eigen::MatrixXd;
 
-// The block size asked for, or the automatic one for this factor. A given
-// subspace must leave room for two automatic blocks beyond the wanted pairs,
-// else the iteration stays single-vector: with less, thick restarts keep
-// almost the whole basis and the block iteration stalls.
-int resolved_block(const EigenOptions& options, Index n, const SparseCholesky& factor) {
-  if (options.block_size > 0) return options.block_size;
-  const int automatic = automatic_block_size(n, factor.statistics().factor_nnz, options.count);
-  return options.subspace == 0 || options.subspace >= options.count + 2 * automatic ? automatic : 1;
-}
-
 detail::LanczosSettings settings_from(const EigenOptions& options, Index n, const SparseCholesky& factor) {
   detail::LanczosSettings s;
   s.count = options.count;
-  s.block = resolved_block(options, n, factor);
+  s.block = options.resolved_block(n, factor.statistics().factor_nnz);
   s.basis = options.resolved_subspace(n, static_cast<int>(s.block));
   s.tolerance = options.tolerance;
   s.max_restarts = options.max_restarts;

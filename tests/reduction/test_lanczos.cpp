@@ -348,9 +348,9 @@ TEST(LanczosAutomatic, SmallProblemsUseTheDenseSolver) {
 }
 
 // block_size 0: the block size comes from the fill of the factor and is
-// reported. A chain's factor is a band (fill ratio far below the threshold),
-// a random pencil's nearly dense (far above), so the two take the two
-// branches; both must still match the oracle.
+// reported. A chain's factor is a band (fill ratio far below the band), a
+// random pencil's fill lies inside it, so the two take the two branches;
+// both must still match the oracle.
 TEST(LanczosAutomatic, BlockSizeFromTheFactorsFill) {
   struct Case {
     const char* name;
