@@ -14,8 +14,8 @@
 #include "io/rig_vtk.hpp"
 #include "rig/design_check.hpp"
 #include "rig/equilibrium.hpp"
-#include "rig/identification_rig.hpp"
-#include "rig/virtual_identification.hpp"
+#include "identify/identification_rig.hpp"
+#include "identify/predicted_error.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -30,75 +30,15 @@ struct CheckArgs {
   bool quiet = false;
 };
 
-// The rigid algorithm's error on a short virtual measurement, and the verdict that weighs it with the ratio.
-struct Prediction {
-  int sets = 0, histories = 0;
-  double duration_s = 0;
-  std::optional<rig::ErrorSummary> rigid;          // against the true body; none when not observable
-  std::optional<rig::ErrorSummary> from_flexibility;  // rigid - flexible on the same data
-  std::optional<rig::ErrorSummary> flexible;       // against the true body
-  std::vector<std::string> unobservable;
-  std::string note;
-  rig::Verdict verdict = rig::Verdict::rigid_safe;   // of the flexibility's error alone
-  rig::Verdict combined = rig::Verdict::rigid_safe;  // worse of ratio and that
-};
-
-nlohmann::json summary_json(const rig::ErrorSummary& e) {
+nlohmann::json summary_json(const identify::ErrorSummary& e) {
   return {{"zG_mean_m", e.zG_mean_m},         {"zG_std_m", e.zG_std_m},
           {"moment_mean", e.moment_mean},     {"moment_std", e.moment_std},
           {"product_max_of_largest", e.product_max}, {"cog_in_plane_max_m", e.cog_in_plane_max_m}};
 }
 
-// Rods that form parallelograms with the carrying frame: it cannot roll or pitch.
-bool parallel_equal_rods(const rig::RigGeometry& g) {
-  const auto dir = [&](const rig::RodGeometry& r) { return (g.reference_point + r.lower - r.upper).normalized(); };
-  for (const auto& r : g.rods) {
-    if ((dir(r) - dir(g.rods.front())).norm() > 1e-6 || std::abs(r.length - g.rods.front().length) > 1e-6) return false;
-  }
-  return true;
-}
-
-Prediction predict(const rig::RigModel& model, const rig::CheckResult& r, const rig::VirtualStudyOptions& o) {
-  const rig::RigSystem truth(model);
-  const rig::IdentificationRig rigid = rig::identification_rig(model, rig::IdentificationAlgorithm::rigid);
-  const rig::IdentificationRig flexible = rig::identification_rig(model, rig::IdentificationAlgorithm::flexible);
-  const rig::VirtualStudy s = rig::virtual_identification(truth, &rigid, &flexible, o);
-  Prediction p;
-  p.sets = o.sets;
-  p.histories = o.histories;
-  p.duration_s = o.duration_s;
-  p.combined = r.verdict;
-  if (!s.rigid->observable) {
-    p.unobservable = s.rigid->unobservable;
-    p.note = "the virtual measurement cannot identify every parameter (" + s.rigid->message + "). ";
-    if (parallel_equal_rods(model.geometry)) {
-      p.note += "The rods are parallel and of equal length: the carrying frame only translates and yaws, so roll "
-                "and pitch are not excited; inclined rods would excite them. ";
-    }
-    p.note += "The verdict rests on the frequency ratio alone.";
-    return p;
-  }
-  p.rigid = rig::summarize_errors(s.rigid->found, s.truth);
-  p.verdict = rig::predicted_verdict(*p.rigid);
-  if (p.verdict != rig::Verdict::rigid_safe && s.flexible->observable) {
-    p.flexible = rig::summarize_errors(s.flexible->found, s.truth);
-    p.from_flexibility = rig::summarize_errors(s.rigid->found, s.flexible->found);
-    // Flexibility is to blame only where modelling it helps: when the
-    // flexible algorithm misses the accuracy as well, noise and excitation
-    // limit the identification and the ratio decides.
-    if (rig::accuracy_score(*p.flexible) > 1.0) {
-      p.verdict = rig::Verdict::rigid_safe;
-      p.note = "both algorithms miss the rig's accuracy on this virtual measurement: noise and excitation limit "
-               "the identification (longer records, larger swings, inclined rods), not flexibility";
-    }
-  }
-  p.combined = rig::worse(r.verdict, p.verdict);
-  return p;
-}
-
 nlohmann::json optional_number(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); }
 
-nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r, const std::optional<Prediction>& p) {
+nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r, const std::optional<identify::Prediction>& p) {
   nlohmann::json j;
   j["rig"] = model.name;
   j["swing_frequencies_hz"] = r.swing_frequencies_hz;
@@ -155,14 +95,14 @@ nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r, co
   return j;
 }
 
-void print_errors(const char* what, const rig::ErrorSummary& e) {
+void print_errors(const char* what, const identify::ErrorSummary& e) {
   std::printf("  %s: zG %+.2f mm (std %.2f mm); Jxx %+.2f %%, Jyy %+.2f %%, Jzz %+.2f %%; products <= %.2f %% of "
               "the largest moment\n",
               what, 1e3 * e.zG_mean_m, 1e3 * e.zG_std_m, 100 * e.moment_mean[0], 100 * e.moment_mean[1],
               100 * e.moment_mean[2], 100 * e.product_max);
 }
 
-void print_prediction(const Prediction& p) {
+void print_prediction(const identify::Prediction& p) {
   std::printf("predicted identification error (%d virtual set(s) x %d histories of %.3g s, noise on):\n", p.sets,
               p.histories, p.duration_s);
   if (p.rigid) print_errors("rigid algorithm", *p.rigid);
@@ -211,9 +151,9 @@ int run(const CheckArgs& a) {
     }
   }();
   print(r);
-  std::optional<Prediction> prediction;
+  std::optional<identify::Prediction> prediction;
   if (a.predict_sets > 0) {
-    rig::VirtualStudyOptions o;
+    identify::VirtualStudyOptions o;
     o.sets = a.predict_sets;
     o.histories = a.predict_histories;
     o.duration_s = a.predict_duration;
@@ -224,7 +164,7 @@ int run(const CheckArgs& a) {
                      o.histories);
       };
     }
-    prediction = predict(model, r, o);
+    prediction = identify::predict_identification_error(model, r, o);
     print_prediction(*prediction);
   }
   if (!a.out.empty()) {

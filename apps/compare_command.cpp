@@ -12,13 +12,13 @@
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
 #include "io/atomic_file.hpp"
-#include "io/compare_json.hpp"
+#include "report/compare_json.hpp"
 #include "io/mass_record.hpp"
-#include "io/reports.hpp"
+#include "report/reports.hpp"
 #include "io/rig_reader.hpp"
-#include "io/study.hpp"
+#include "report/study.hpp"
 #include "rig/equilibrium.hpp"
-#include "rig/model_comparison.hpp"
+#include "diagnose/model_comparison.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -32,7 +32,7 @@ struct CompareArgs {
   bool quiet = false;
 };
 
-io::TimeHistory model_history(const rig::HistoryComparison& h, int rods, const std::string& label) {
+io::TimeHistory model_history(const diagnose::HistoryComparison& h, int rods, const std::string& label) {
   io::TimeHistory t;
   t.comments = {{"source", "rigflex compare: model " + label}, {"measurement", h.source}};
   t.t = h.t();
@@ -42,7 +42,7 @@ io::TimeHistory model_history(const rig::HistoryComparison& h, int rods, const s
   return t;
 }
 
-void print_table(const rig::ModelComparison& c) {
+void print_table(const diagnose::ModelComparison& c) {
   std::printf("%-8s %10s %10s %14s\n", "channel", "NRMSE", "raw NRMSE", "residual/noise");
   for (size_t i = 0; i < c.channels.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
@@ -58,7 +58,7 @@ void print_table(const rig::ModelComparison& c) {
   }
   if (c.identified) {
     const auto& p = c.identified->properties;
-    std::printf("identified (%s): m %.2f kg, CoG (%.4f, %.4f, %.4f) m\n", rig::to_string(c.algorithm), p.mass,
+    std::printf("identified (%s): m %.2f kg, CoG (%.4f, %.4f, %.4f) m\n", identify::to_string(c.algorithm), p.mass,
                 p.cog.x(), p.cog.y(), p.cog.z());
   } else if (!c.identification_error.empty()) {
     std::printf("identification: %s\n", c.identification_error.c_str());
@@ -80,48 +80,48 @@ std::string model_file_name(const MeasuredModel& mm, size_t i) {
 
 int run(const CompareArgs& a) {
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
-  io::CompareContext ctx;
+  report::CompareContext ctx;
   ctx.rig = mm.model.name;
   ctx.model_label = mm.label;
   ctx.model_effects = mm.effect_names;
   if (!a.reference.empty()) ctx.reference = io::read_mass_record(a.reference);
 
-  rig::ModelComparisonOptions o;
+  diagnose::ModelComparisonOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
   if (!a.quiet) o.progress = [](int done, int total) { std::fprintf(stderr, "compare: history %d/%d\n", done, total); };
-  std::unique_ptr<rig::ResponseModel> model;
+  std::unique_ptr<diagnose::ResponseModel> model;
   try {
-    model = std::make_unique<rig::ResponseModel>(mm.model);
+    model = std::make_unique<diagnose::ResponseModel>(mm.model);
   } catch (const rig::NoEquilibrium& e) {
     throw io::no_equilibrium_error(a.rig, mm.model, e.what());
   }
-  rig::ModelComparison c;
+  diagnose::ModelComparison c;
   try {
-    c = rig::compare_model(*model, mm.pointers(), mm.sources(), o);
-  } catch (const rig::RecordError& e) {
+    c = diagnose::compare_model(*model, mm.pointers(), mm.sources(), o);
+  } catch (const identify::RecordError& e) {
     rethrow_record_error(mm, e);
   }
   for (const auto& w : c.warnings) std::fprintf(stderr, "compare: warning: %s\n", w.c_str());
   print_table(c);
 
-  nlohmann::ordered_json j = io::compare_json(c, ctx);
-  std::vector<io::StudyEntry> entries;
-  io::StudyEntry study_entry;
+  nlohmann::ordered_json j = report::compare_json(c, ctx);
+  std::vector<report::StudyEntry> entries;
+  report::StudyEntry study_entry;
   if (!a.study.empty()) {
-    io::StudyEntry& e = study_entry;
+    report::StudyEntry& e = study_entry;
     e.label = mm.label;
     // A version: the model files, the options that change the errors, and the data compared with.
     std::vector<std::filesystem::path> inputs = mm.model_files;
     inputs.insert(inputs.end(), mm.files.begin(), mm.files.end());
-    e.fingerprint = io::model_fingerprint(inputs, "fit_window=" + std::to_string(o.compare.fit_window_s));
+    e.fingerprint = report::model_fingerprint(inputs, "fit_window=" + std::to_string(o.compare.fit_window_s));
     e.effects = mm.effect_names;
     e.overall_nrmse = c.overall_nrmse;
     e.force_nrmse = c.force_nrmse;
     e.angle_nrmse = c.angle_nrmse;
     for (size_t i = 0; i < c.channels.size(); ++i) e.nrmse[c.channels[i]] = c.nrmse(static_cast<Eigen::Index>(i));
     if (c.identified) e.identified_cog_z = c.identified->properties.cog.z();
-    entries = io::study_with(a.study, e);
+    entries = report::study_with(a.study, e);
     nlohmann::ordered_json versions = nlohmann::ordered_json::array();
     std::printf("study %s:\n%-8s %-12s %-12s %s\n", a.study.c_str(), "version", "overall", "forces", "model");
     for (const auto& x : entries) {
@@ -138,7 +138,7 @@ int run(const CompareArgs& a) {
   std::filesystem::create_directories(out / "model");
   io::FileBatch batch;
   batch.add_text(out / "compare.json", j.dump(2) + "\n");
-  batch.add_text(out / "compare.html", io::compare_report(c, ctx, entries).html());
+  batch.add_text(out / "compare.html", report::compare_report(c, ctx, entries).html());
   const int rods = mm.model.geometry.rod_count();
   for (size_t i = 0; i < c.histories.size(); ++i) {
     const io::TimeHistory th = model_history(c.histories[i], rods, mm.label);
@@ -146,7 +146,7 @@ int run(const CompareArgs& a) {
   }
   batch.commit();
   // The study is written once the outputs are: a failed run leaves no entry.
-  if (!a.study.empty()) io::record_in_study(a.study, study_entry);
+  if (!a.study.empty()) report::record_in_study(a.study, study_entry);
   std::printf("wrote %s/compare.json, %s/compare.html and %zu model histories in %s/model\n", a.out.c_str(),
               a.out.c_str(), c.histories.size(), a.out.c_str());
   return 0;

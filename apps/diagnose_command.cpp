@@ -12,10 +12,10 @@
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
 #include "io/atomic_file.hpp"
-#include "io/compare_json.hpp"
-#include "io/reports.hpp"
+#include "report/compare_json.hpp"
+#include "report/reports.hpp"
 #include "io/rig_reader.hpp"
-#include "rig/diagnosis.hpp"
+#include "diagnose/diagnosis.hpp"
 #include "rig/equilibrium.hpp"
 
 namespace rigflex::app {
@@ -30,7 +30,7 @@ struct DiagnoseArgs {
   bool quiet = false;
 };
 
-std::string effects_file_text(const rig::EffectFit& e) {
+std::string effects_file_text(const diagnose::EffectFit& e) {
   std::ostringstream s;
   s << "# Fitted by rigflex diagnose: explains " << e.explained_fraction * 100 << " % of the residual"
     << (e.significant ? " (significant)" : " (not significant)") << (e.plausible ? "" : "; IMPLAUSIBLE values")
@@ -42,7 +42,7 @@ std::string effects_file_text(const rig::EffectFit& e) {
 
 int run(const DiagnoseArgs& a) {
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
-  rig::DiagnosisOptions o;
+  diagnose::DiagnosisOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
   o.effects = a.only;
@@ -52,12 +52,12 @@ int run(const DiagnoseArgs& a) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("--only: ") + e.what());
   }
-  rig::Diagnosis d;
+  diagnose::Diagnosis d;
   try {
-    d = rig::diagnose(mm.model, mm.pointers(), mm.sources(), o);
+    d = diagnose::diagnose(mm.model, mm.pointers(), mm.sources(), o);
   } catch (const rig::NoEquilibrium& e) {
     throw io::no_equilibrium_error(a.rig, mm.model, e.what());
-  } catch (const rig::RecordError& e) {
+  } catch (const identify::RecordError& e) {
     rethrow_record_error(mm, e);
   }
   std::printf("%-28s %10s %12s %11s %9s\n", "effect", "explained", "significant", "plausible", "p-value");
@@ -73,15 +73,15 @@ int run(const DiagnoseArgs& a) {
       std::printf("to capture it properly: %s\n", e.advice.c_str());
     }
   }
-  io::CompareContext ctx;
+  report::CompareContext ctx;
   ctx.rig = mm.model.name;
   ctx.model_label = mm.label;
   ctx.model_effects = mm.effect_names;
   const std::filesystem::path out(a.out);
   std::filesystem::create_directories(out / "effects");
   io::FileBatch batch;
-  batch.add_text(out / "diagnosis.json", io::diagnosis_json(d, ctx).dump(2) + "\n");
-  batch.add_text(out / "diagnosis.html", io::diagnosis_report(d, ctx, &d.baseline_analysis).html());
+  batch.add_text(out / "diagnosis.json", report::diagnosis_json(d, ctx).dump(2) + "\n");
+  batch.add_text(out / "diagnosis.html", report::diagnosis_report(d, ctx, &d.baseline_analysis).html());
   // A file per effect that the fit made an effect of (a compliance fitted to zero is none).
   for (const auto& e : d.ranking) {
     if (!e.rig_block.empty()) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));

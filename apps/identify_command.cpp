@@ -9,17 +9,17 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
-#include "io/identification_report.hpp"
+#include "report/identification_report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_layout.hpp"
-#include "io/reports.hpp"
+#include "report/reports.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
-#include "rig/identification.hpp"
+#include "identify/identification.hpp"
 #include "rig/parallel_for.hpp"
 
 namespace rigflex::app {
@@ -58,15 +58,15 @@ void use_reduced(rig::RigModel& model, const std::filesystem::path& dir) {
   model.effects.push_back(effect);
 }
 
-rig::IdentificationOptions options_from(const IdentifyArgs& a) {
-  rig::IdentificationOptions o;
+identify::IdentificationOptions options_from(const IdentifyArgs& a) {
+  identify::IdentificationOptions o;
   if (a.window > 0) o.differentiation.window_s = a.window;
   if (a.degree > 0) o.differentiation.degree = static_cast<int>(a.degree);
   if (a.static_cog.size() == 2) {
-    o.cog_constraint = rig::CogConstraint::in_plane;
+    o.cog_constraint = identify::CogConstraint::in_plane;
     o.imposed_cog = rig::Vec3(a.static_cog[0], a.static_cog[1], 0.0);
   } else if (a.static_cog.size() == 3) {
-    o.cog_constraint = rig::CogConstraint::full;
+    o.cog_constraint = identify::CogConstraint::full;
     o.imposed_cog = rig::Vec3(a.static_cog[0], a.static_cog[1], a.static_cog[2]);
   } else if (!a.static_cog.empty()) {
     throw std::invalid_argument("--static-cog: expected X,Y or X,Y,Z in metres");
@@ -76,11 +76,11 @@ rig::IdentificationOptions options_from(const IdentifyArgs& a) {
 }
 
 // Identifies every set; an unusable record or an unobservable set is bad input named by its file.
-std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig& rig, const io::MeasurementSets& data,
-                                                    const rig::IdentificationOptions& options, int threads,
+std::vector<identify::IdentificationResult> identify_all(const identify::IdentificationRig& rig, const io::MeasurementSets& data,
+                                                    const identify::IdentificationOptions& options, int threads,
                                                     bool quiet) {
   const int n = static_cast<int>(data.sets.size());
-  std::vector<rig::IdentificationResult> out(static_cast<size_t>(n));
+  std::vector<identify::IdentificationResult> out(static_cast<size_t>(n));
   std::mutex progress;
   int done = 0;
   rig::parallel_for(n, threads, [&](int k) {
@@ -90,8 +90,8 @@ std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig
     std::vector<const rig::VirtualHistory*> ptrs;
     for (const auto& r : records) ptrs.push_back(&r);
     try {
-      out[static_cast<size_t>(k)] = rig::identify(rig, ptrs, options);
-    } catch (const rig::RecordError& e) {
+      out[static_cast<size_t>(k)] = identify::identify(rig, ptrs, options);
+    } catch (const identify::RecordError& e) {
       const auto i = static_cast<size_t>(std::max(0, e.history()));
       const io::TimeHistory& h = set.histories[i];
       const int line = e.sample() >= 0 ? h.header_line + 1 + static_cast<int>(e.sample()) : 0;
@@ -106,7 +106,7 @@ std::vector<rig::IdentificationResult> identify_all(const rig::IdentificationRig
     }
     if (!quiet) {
       std::lock_guard<std::mutex> lock(progress);
-      std::fprintf(stderr, "identify (%s): set %d/%d done\n", rig::to_string(rig.algorithm), ++done, n);
+      std::fprintf(stderr, "identify (%s): set %d/%d done\n", identify::to_string(rig.algorithm), ++done, n);
     }
   });
   return out;
@@ -118,13 +118,13 @@ int run(const IdentifyArgs& a) {
   rig::RigModel model = io::read_rig(a.rig, ro);
   for (const auto& dir : a.reduced) use_reduced(model, dir);
   if (a.mass > 0) model.body.mass = a.mass;
-  const rig::IdentificationOptions options = options_from(a);
+  const identify::IdentificationOptions options = options_from(a);
 
   std::vector<std::filesystem::path> paths(a.data.begin(), a.data.end());
   const io::MeasurementSets data = io::read_measurement_sets(paths, model.geometry.rod_count());
   if (!a.quiet) std::fprintf(stderr, "identify: %zu set(s) read\n", data.sets.size());
 
-  io::IdentificationReport report;
+  report::IdentificationReport report;
   report.rig = model.name;
   report.set_names = data.names;
   for (const auto& s : data.sets) {
@@ -137,12 +137,12 @@ int run(const IdentifyArgs& a) {
   if (a.static_cog.size() == 3) report.static_cog_height = a.static_cog[2];
   report.options = options;
 
-  std::vector<rig::IdentificationAlgorithm> algorithms;
-  if (a.algorithm != "flexible") algorithms.push_back(rig::IdentificationAlgorithm::rigid);
-  if (a.algorithm != "rigid") algorithms.push_back(rig::IdentificationAlgorithm::flexible);
+  std::vector<identify::IdentificationAlgorithm> algorithms;
+  if (a.algorithm != "flexible") algorithms.push_back(identify::IdentificationAlgorithm::rigid);
+  if (a.algorithm != "rigid") algorithms.push_back(identify::IdentificationAlgorithm::flexible);
   for (const auto alg : algorithms) {
-    const rig::IdentificationRig idr = rig::identification_rig(model, alg);
-    if (alg == rig::IdentificationAlgorithm::flexible && !idr.flexible() && !a.quiet) {
+    const identify::IdentificationRig idr = identify::identification_rig(model, alg);
+    if (alg == identify::IdentificationAlgorithm::flexible && !idr.flexible() && !a.quiet) {
       std::fprintf(stderr,
                    "identify: warning: the rig model has no flexible frame or rod (no fixed_frame_flexibility, "
                    "carrying_frame_flexibility, rod_compliance, nor --reduced): the flexible algorithm equals the "
@@ -155,7 +155,7 @@ int run(const IdentifyArgs& a) {
   std::filesystem::create_directories(out);
   io::FileBatch batch;
   batch.add_text(out / "identification.json", report.json().dump(2) + "\n");
-  batch.add_text(out / "identification.html", io::identification_html(report).html());
+  batch.add_text(out / "identification.html", report::identification_html(report).html());
   batch.commit();
   std::printf("wrote %s/identification.json and %s/identification.html\n", a.out.c_str(), a.out.c_str());
   return 0;

@@ -1,12 +1,14 @@
 // rigflex: flexible models, modes and reduction of multi-filar pendulum rigs.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <string>
 
 #include "apps/commands.hpp"
 #include "io/input_error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"rigflex: frame models, modes, reduction, rig simulation and design check for multi-filar pendulum rigs"};
+  app.set_version_flag("--version", std::string("rigflex ") + RIGFLEX_VERSION);
   app.require_subcommand(1);
   int exit_code = 0;
   rigflex::app::add_mass_command(app, exit_code);

@@ -5,7 +5,7 @@
 #include "apps/commands.hpp"
 #include "fe/mass_properties.hpp"
 #include "io/model_reader.hpp"
-#include "io/modes_json.hpp"
+#include "io/mass_record.hpp"
 
 namespace rigflex::app {
 

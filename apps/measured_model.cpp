@@ -48,7 +48,7 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
   return mm;
 }
 
-void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e) {
+void rethrow_record_error(const MeasuredModel& mm, const identify::RecordError& e) {
   if (e.history() < 0 || static_cast<size_t>(e.history()) >= mm.files.size()) {
     throw io::InputError("(a measurement)", 0, e.channel(), e.what());
   }

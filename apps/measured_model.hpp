@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "io/measurement_csv.hpp"
-#include "rig/identification_kinematics.hpp"
+#include "identify/identification_kinematics.hpp"
 #include "rig/rig_model.hpp"
 #include "rig/simulation.hpp"
 
@@ -29,6 +29,6 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
                                   const std::vector<std::string>& data, bool quiet, const char* command);
 
 // The InputError for a record error of history `history` (its file and line).
-[[noreturn]] void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e);
+[[noreturn]] void rethrow_record_error(const MeasuredModel& mm, const identify::RecordError& e);
 
 }  // namespace rigflex::app

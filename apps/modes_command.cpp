@@ -7,7 +7,7 @@
 #include "apps/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/model_reader.hpp"
-#include "io/modes_json.hpp"
+#include "report/modes_json.hpp"
 #include "io/vtk_modes.hpp"
 #include "reduction/modal_analysis.hpp"
 
@@ -39,12 +39,12 @@ void print_table(const reduction::ModalAnalysis& a) {
 
 int run(const ModesArgs& args) {
   const io::ModelFile m = io::read_model(args.model);
-  reduction::EigenOptions opt;
+  linalg::EigenOptions opt;
   opt.count = args.count;
   opt.block_size = args.block;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
   if (!args.quiet)
-    opt.progress = [](const reduction::EigenProgress& p) {
+    opt.progress = [](const linalg::EigenProgress& p) {
       std::fprintf(stderr, "\rlanczos: restart %d, %d converged", p.restart, p.converged);
       std::fflush(stderr);
     };
@@ -64,7 +64,7 @@ int run(const ModesArgs& args) {
   if (!args.out.empty() && a.result.converged_count > 0) {
     const std::filesystem::path dir(args.out);
     io::FileBatch batch;
-    batch.add_text(dir / "modes.json", io::modes_json(m.name, a).dump(2) + "\n");
+    batch.add_text(dir / "modes.json", report::modes_json(m.name, a).dump(2) + "\n");
     io::add_mode_shape_files(batch, dir, m.model, a.system.dofs, a.summary.frequencies_hz, a.result.vectors);
     batch.commit();
     std::printf("wrote %s/modes.json, modes.pvd and %ld mode_NNN.vtu\n", args.out.c_str(),

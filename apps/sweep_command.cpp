@@ -8,10 +8,10 @@
 #include <sstream>
 
 #include "apps/commands.hpp"
-#include "io/reports.hpp"
+#include "report/reports.hpp"
 #include "io/atomic_file.hpp"
 #include "io/rig_reader.hpp"
-#include "rig/sweep.hpp"
+#include "identify/sweep.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -27,8 +27,8 @@ struct SweepArgs {
   bool quiet = false;
 };
 
-rig::ScaleRange parse_range(const std::string& text, const std::string& option) {
-  rig::ScaleRange r;
+identify::ScaleRange parse_range(const std::string& text, const std::string& option) {
+  identify::ScaleRange r;
   char c1 = 0, c2 = 0;
   std::istringstream in(text);
   if (!(in >> r.start >> c1 >> r.stop >> c2 >> r.count) || c1 != ':' || c2 != ':' || !in.eof()) {
@@ -45,12 +45,12 @@ std::string number(const std::optional<double>& v) {
   return b;
 }
 
-std::string csv(const std::vector<rig::SweepPoint>& points) {
+std::string csv(const std::vector<identify::SweepPoint>& points) {
   std::string out =
       "kind,scale,f1_hz,swing_max_hz,ratio,rigid_zG_mean_m,rigid_zG_std_m,rigid_Jyy_mean,rigid_Jyy_std,"
       "flexible_zG_mean_m,flexible_zG_std_m,flexible_Jyy_mean,flexible_Jyy_std,failure\n";
   for (const auto& p : points) {
-    out += std::string(rig::to_string(p.kind)) + "," + number(p.scale) + "," + number(p.f1_hz) + "," +
+    out += std::string(identify::to_string(p.kind)) + "," + number(p.scale) + "," + number(p.f1_hz) + "," +
            number(p.swing_max_hz) + "," + number(p.ratio);
     for (const auto* e : {&p.rigid, &p.flexible}) {
       if (*e) {
@@ -69,7 +69,7 @@ std::string csv(const std::vector<rig::SweepPoint>& points) {
   return out;
 }
 
-nlohmann::ordered_json errors_json(const std::optional<rig::ErrorSummary>& e) {
+nlohmann::ordered_json errors_json(const std::optional<identify::ErrorSummary>& e) {
   if (!e) return nullptr;
   return {{"sets", e->sets},
           {"zG_mean_m", e->zG_mean_m},
@@ -88,7 +88,7 @@ nlohmann::ordered_json optional_json(const std::optional<double>& v) {
 
 int run(const SweepArgs& a) {
   const rig::RigModel model = io::read_rig(a.rig);
-  rig::SweepOptions o;
+  identify::SweepOptions o;
   o.mass = parse_range(a.mass_scale, "--mass-scale");
   o.stiffness = parse_range(a.stiffness_scale, "--stiffness-scale");
   o.study.sets = a.sets;
@@ -97,18 +97,18 @@ int run(const SweepArgs& a) {
   o.study.seed = a.seed;
   o.threads = a.threads;
   if (!a.quiet) o.progress = [](int done, int total) { std::fprintf(stderr, "sweep: point %d/%d\n", done, total); };
-  const auto points = rig::sweep(model, o);
+  const auto points = identify::sweep(model, o);
 
   std::printf("%-9s %7s %8s %7s %12s %10s %12s %10s %s\n", "kind", "scale", "f1 [Hz]", "ratio", "rigid zG mm",
               "rigid Jyy%", "flex zG mm", "flex Jyy%", "");
   nlohmann::ordered_json pts = nlohmann::ordered_json::array();
   for (const auto& p : points) {
-    auto mm = [](const std::optional<rig::ErrorSummary>& e) { return e ? 1e3 * e->zG_mean_m : NAN; };
-    auto pc = [](const std::optional<rig::ErrorSummary>& e) { return e ? 100 * e->moment_mean[1] : NAN; };
-    std::printf("%-9s %7.3g %8.3f %7.2f %12.2f %10.3f %12.2f %10.3f %s\n", rig::to_string(p.kind), p.scale,
+    auto mm = [](const std::optional<identify::ErrorSummary>& e) { return e ? 1e3 * e->zG_mean_m : NAN; };
+    auto pc = [](const std::optional<identify::ErrorSummary>& e) { return e ? 100 * e->moment_mean[1] : NAN; };
+    std::printf("%-9s %7.3g %8.3f %7.2f %12.2f %10.3f %12.2f %10.3f %s\n", identify::to_string(p.kind), p.scale,
                 p.f1_hz.value_or(NAN), p.ratio.value_or(NAN), mm(p.rigid), pc(p.rigid), mm(p.flexible),
                 pc(p.flexible), p.failure.c_str());
-    pts.push_back({{"kind", rig::to_string(p.kind)},
+    pts.push_back({{"kind", identify::to_string(p.kind)},
                    {"scale", p.scale},
                    {"f1_hz", optional_json(p.f1_hz)},
                    {"swing_max_hz", optional_json(p.swing_max_hz)},
@@ -131,7 +131,7 @@ int run(const SweepArgs& a) {
   io::FileBatch batch;
   batch.add_text(out / "sweep.csv", csv(points));
   batch.add_text(out / "sweep.json", j.dump(2) + "\n");
-  batch.add_text(out / "sweep.html", io::sweep_html(model.name, points).html());
+  batch.add_text(out / "sweep.html", report::sweep_html(model.name, points).html());
   batch.commit();
   std::printf("(errors: identified - true; zG mean over the sets in mm, Jyy mean relative in %%)\nwrote %s/sweep.csv, sweep.json and sweep.html\n",
               a.out.c_str());

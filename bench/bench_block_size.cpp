@@ -38,7 +38,7 @@
 #include "fe/meshers.hpp"
 #include "fe/model.hpp"
 #include "fe/node_merger.hpp"
-#include "reduction/eigen_solver.hpp"
+#include "linalg/eigen_solver.hpp"
 
 namespace {
 
@@ -218,23 +218,23 @@ int main(int argc, char** argv) try {
     const Eigen::Index n = sys.K.rows();
     std::cerr << "== " << spec << ": " << n << " DOFs (load " << bench::loadavg() << ")\n";
 
-    reduction::EigenOptions eo;
+    linalg::EigenOptions eo;
     eo.count = o.modes;
-    eo.method = reduction::EigenMethod::lanczos;
+    eo.method = linalg::EigenMethod::lanczos;
     eo.subspace = o.subspace;
-    reduction::SparseCholesky probe;
-    const reduction::PencilFactorization pencil = reduction::factorize_pencil(sys.K, sys.M, std::nullopt, probe);
+    linalg::SparseCholesky probe;
+    const linalg::PencilFactorization pencil = linalg::factorize_pencil(sys.K, sys.M, std::nullopt, probe);
     if (!pencil.ok) throw std::runtime_error(spec + ": " + pencil.message);
     const double nnz = probe.statistics().factor_nnz;
-    const int automatic = reduction::automatic_block_size(n, nnz, eo.count);
-    const double ratio = reduction::block_fill_ratio(n, nnz, eo.count);
+    const int automatic = linalg::automatic_block_size(n, nnz, eo.count);
+    const double ratio = linalg::block_fill_ratio(n, nnz, eo.count);
 
     std::vector<double> best(o.blocks.size(), 0);
     for (int rep = 0; rep < o.repeat; ++rep)
       for (size_t i = 0; i < o.blocks.size(); ++i) {
         eo.block_size = o.blocks[i];
         const auto t0 = clock_type::now();
-        const reduction::EigenResult r = reduction::solve_lanczos(sys.K, sys.M, eo);
+        const linalg::EigenResult r = linalg::solve_lanczos(sys.K, sys.M, eo);
         const double t = seconds_since(t0);
         if (!r.converged) throw std::runtime_error(spec + ": block " + std::to_string(o.blocks[i]) + ": " + r.message);
         if (r.backward_errors.maxCoeff() > 1e-9 || r.orthogonality_error > 1e-9)

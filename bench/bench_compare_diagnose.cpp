@@ -13,9 +13,9 @@
 
 #include "bench_cli.hpp"
 #include "io/rig_reader.hpp"
-#include "rig/diagnosis.hpp"
+#include "diagnose/diagnosis.hpp"
 #include "rig/effects.hpp"
-#include "rig/model_comparison.hpp"
+#include "diagnose/model_comparison.hpp"
 
 namespace {
 
@@ -90,19 +90,19 @@ int main(int argc, char** argv) {
     std::string missing;
     for (int r = 0; r < repeat; ++r) {
       auto t0 = bench::clock_type::now();
-      const rig::ResponseModel m(c.start);
-      (void)rig::predict_channels(m, rig::SwingState::Zero(), data.front().t);
+      const diagnose::ResponseModel m(c.start);
+      (void)diagnose::predict_channels(m, diagnose::SwingState::Zero(), data.front().t);
       predict = std::min(predict, bench::seconds_since(t0));
       t0 = bench::clock_type::now();
-      rig::ModelComparisonOptions co;
+      diagnose::ModelComparisonOptions co;
       co.threads = threads;
-      const rig::ResponseModel m2(c.start);
-      (void)rig::compare_model(m2, ptrs, {}, co);
+      const diagnose::ResponseModel m2(c.start);
+      (void)diagnose::compare_model(m2, ptrs, {}, co);
       compare = std::min(compare, bench::seconds_since(t0));
       t0 = bench::clock_type::now();
-      rig::DiagnosisOptions dopt;
+      diagnose::DiagnosisOptions dopt;
       dopt.threads = threads;
-      const rig::Diagnosis d = rig::diagnose(c.start, ptrs, {}, dopt);
+      const diagnose::Diagnosis d = diagnose::diagnose(c.start, ptrs, {}, dopt);
       diagnose = std::min(diagnose, bench::seconds_since(t0));
       missing = d.missing_effect.value_or("none");
     }

@@ -30,8 +30,8 @@
 #include "io/atomic_file.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/rig_reader.hpp"
-#include "rig/identification.hpp"
-#include "rig/mass_statistics.hpp"
+#include "identify/identification.hpp"
+#include "identify/mass_statistics.hpp"
 #include "rig/parallel_for.hpp"
 #include "rig/pose_fit.hpp"
 #include "rig/simulation.hpp"
@@ -86,10 +86,10 @@ void accuracy(const rig::RigModel& model, const Sets& sets) {
   const double largest = truth.inertia.diagonal().maxCoeff();
   std::printf("| algorithm | zG error mean mm | zG std mm | max |xG,yG| err mm | Jxx %% | Jyy %% | Jzz %% | max product err %% of largest | sets |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|\n");
-  for (auto alg : {rig::IdentificationAlgorithm::rigid, rig::IdentificationAlgorithm::flexible}) {
-    const rig::IdentificationRig idr = rig::identification_rig(model, alg);
+  for (auto alg : {identify::IdentificationAlgorithm::rigid, identify::IdentificationAlgorithm::flexible}) {
+    const identify::IdentificationRig idr = identify::identification_rig(model, alg);
     std::vector<fe::MassProperties> found;
-    for (const auto& set : sets) found.push_back(rig::identify(idr, pointers(set), {}).properties);
+    for (const auto& set : sets) found.push_back(identify::identify(idr, pointers(set), {}).properties);
     std::vector<double> dz;
     std::array<double, 3> worst_moment{};
     double worst_product = 0, worst_plane = 0;
@@ -104,7 +104,7 @@ void accuracy(const rig::RigModel& model, const Sets& sets) {
       }
       worst_plane = std::max({worst_plane, std::abs(p.cog.x() - truth.cog.x()), std::abs(p.cog.y() - truth.cog.y())});
     }
-    const rig::SampleSummary z = rig::summarize(dz);
+    const identify::SampleSummary z = identify::summarize(dz);
     std::printf("| %s | %+.2f | %.2f | %.2f | %+.3f | %+.3f | %+.3f | %.3f | %zu |\n", rig::to_string(alg), 1e3 * z.mean,
                 1e3 * z.std.value_or(0.0), 1e3 * worst_plane, 100 * worst_moment[0], 100 * worst_moment[1],
                 100 * worst_moment[2], 100 * worst_product, found.size());
@@ -112,28 +112,28 @@ void accuracy(const rig::RigModel& model, const Sets& sets) {
   std::printf("(moments: the worst set's relative error; products: the worst |error| over sets and products)\n\n");
 }
 
-double time_in_memory(const rig::IdentificationRig& idr, const Sets& sets, int measurements, int threads) {
+double time_in_memory(const identify::IdentificationRig& idr, const Sets& sets, int measurements, int threads) {
   const auto t0 = clock_type::now();
   rig::parallel_for(measurements, threads, [&](int k) {
-    const auto r = rig::identify(idr, pointers(sets[static_cast<size_t>(k) % sets.size()]), {});
+    const auto r = identify::identify(idr, pointers(sets[static_cast<size_t>(k) % sets.size()]), {});
     if (!r.observable) throw std::runtime_error("not observable");
   });
   return seconds_since(t0);
 }
 
-double time_from_files(const rig::IdentificationRig& idr, const std::vector<std::filesystem::path>& folders,
+double time_from_files(const identify::IdentificationRig& idr, const std::vector<std::filesystem::path>& folders,
                        int measurements, int threads) {
   const auto t0 = clock_type::now();
   rig::parallel_for(measurements, threads, [&](int k) {
     const io::MeasurementSet set = io::read_measurement_set(folders[static_cast<size_t>(k) % folders.size()], idr.rods());
     std::vector<rig::VirtualHistory> records;
     for (const auto& h : set.histories) records.push_back(io::to_record(h));
-    if (!rig::identify(idr, pointers(records), {}).observable) throw std::runtime_error("not observable");
+    if (!identify::identify(idr, pointers(records), {}).observable) throw std::runtime_error("not observable");
   });
   return seconds_since(t0);
 }
 
-double pose_fit_floor(const rig::IdentificationRig& idr, long samples) {
+double pose_fit_floor(const identify::IdentificationRig& idr, long samples) {
   rig::JointPoints b(3, idr.rods()), B(3, idr.rods());
   for (int i = 0; i < idr.rods(); ++i) b.col(i) = idr.geometry.rods[i].lower;
   B = b;
@@ -182,8 +182,8 @@ int main(int argc, char** argv) {
     const long samples = static_cast<long>(o.measurements) * 6 * sets[0][0].t.size();
     std::printf("## speed: %d measurements (%ld samples), best of %d\n\n", o.measurements, samples, o.repeat);
     std::printf("| algorithm | threads | in memory s | from CSV s | target s |\n|---|---|---|---|---|\n");
-    for (auto alg : {rig::IdentificationAlgorithm::rigid, rig::IdentificationAlgorithm::flexible}) {
-      const rig::IdentificationRig idr = rig::identification_rig(model, alg);
+    for (auto alg : {identify::IdentificationAlgorithm::rigid, identify::IdentificationAlgorithm::flexible}) {
+      const identify::IdentificationRig idr = identify::identification_rig(model, alg);
       for (int threads : {1, cores}) {
         double mem = 1e300, csv = 1e300;
         for (int r = 0; r < o.repeat; ++r) {
@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
         std::printf("| %s | %d | %.2f | %.2f | 5 |\n", rig::to_string(alg), threads, mem, csv);
       }
     }
-    const rig::IdentificationRig idr = rig::identification_rig(model, rig::IdentificationAlgorithm::rigid);
+    const identify::IdentificationRig idr = identify::identification_rig(model, identify::IdentificationAlgorithm::rigid);
     const double floor = pose_fit_floor(idr, samples / 10);
     std::printf("\nfloor (pose fit, one SVD per sample, 1 thread): %.2f s for all samples\n", 10 * floor);
     std::filesystem::remove_all(folder);

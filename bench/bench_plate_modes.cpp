@@ -24,7 +24,7 @@
 //
 // Measurement notes:
 //   * rigflex times: "assembly" = fe::assemble (meshing not included);
-//     "eigen" = wall time of reduction::solve_lanczos, which includes its own
+//     "eigen" = wall time of linalg::solve_lanczos, which includes its own
 //     factorization ("factor" = EigenResult::factor_seconds), the Lanczos
 //     iteration, Rayleigh-Ritz and the residual check.
 //   * "peak RSS" = VmHWM of this process from meshing to the end of
@@ -67,9 +67,9 @@
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "io/calculix_writer.hpp"
-#include "reduction/eigen_solver.hpp"
-#include "reduction/sparse_cholesky.hpp"
+#include "verification/calculix_writer.hpp"
+#include "linalg/eigen_solver.hpp"
+#include "linalg/sparse_cholesky.hpp"
 
 extern char** environ;
 
@@ -292,12 +292,12 @@ Row run_size(long target, const Options& o) {
   row.eigen_base_mb = status_kb("VmRSS:") / 1024.0;
   std::cerr << "   assembled " << row.dofs << " DOFs in " << row.assembly << " s\n";
 
-  reduction::EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = o.modes;
   eo.block_size = o.block;
-  eo.method = reduction::EigenMethod::lanczos;
+  eo.method = linalg::EigenMethod::lanczos;
   t0 = clock_type::now();
-  const reduction::EigenResult r = reduction::solve_lanczos(sys.K, sys.M, eo);
+  const linalg::EigenResult r = linalg::solve_lanczos(sys.K, sys.M, eo);
   row.eigen = seconds_since(t0);
   row.eigen_peak_mb = status_kb("VmHWM:") / 1024.0;
   row.peak_mb = std::max(row.assembly_peak_mb, row.eigen_peak_mb);
@@ -318,13 +318,13 @@ Row run_size(long target, const Options& o) {
   for (int rep = 0; rep < o.repeat; ++rep) {
     if (rep > 0) {
       t0 = clock_type::now();
-      const reduction::EigenResult again = reduction::solve_lanczos(sys.K, sys.M, eo);
+      const linalg::EigenResult again = linalg::solve_lanczos(sys.K, sys.M, eo);
       const double t = seconds_since(t0);
       if (t < row.eigen) row.eigen = t, row.factor = again.factor_seconds;
     }
-    reduction::SparseCholesky floor_factor;
+    linalg::SparseCholesky floor_factor;
     t0 = clock_type::now();
-    const reduction::FactorStatus st = floor_factor.factorize_shifted(sys.K, sys.M, r.shift);
+    const linalg::FactorStatus st = floor_factor.factorize_shifted(sys.K, sys.M, r.shift);
     const double factor_s = seconds_since(t0);
     if (!st.ok) throw std::runtime_error("floor factorization failed: " + st.message);
     row.factor_mb = floor_factor.statistics().factor_bytes / (1024.0 * 1024.0);
@@ -389,14 +389,14 @@ Row run_size(long target, const Options& o) {
 
   // (b) CalculiX on the same mesh.
   if (o.ccx && peers) {
-    if (!io::calculix_available()) {
+    if (!verification::calculix_available()) {
       row.ccx_note = "ccx not on PATH";
     } else {
       std::cerr << "   ccx ...\n";
-      io::CalculixRunOptions run;
+      verification::CalculixRunOptions run;
       run.threads = o.ccx_threads;
       try {
-        const io::CalculixFrequencies c = io::run_calculix_frequencies(model, o.modes, dir / "ccx", run);
+        const verification::CalculixFrequencies c = verification::run_calculix_frequencies(model, o.modes, dir / "ccx", run);
         row.ccx_s = c.wall_seconds;
         row.ccx_rss_mb = c.max_rss_kb / 1024.0;
         row.ccx_equations = c.equations;
@@ -484,7 +484,7 @@ void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& 
 // not pay for first-touch allocation and BLAS thread start-up.
 void warm_up() {
   const fe::AssembledSystem sys = fe::assemble(clamped_plate(24));
-  reduction::SparseCholesky f;
+  linalg::SparseCholesky f;
   f.factorize_shifted(sys.K, sys.M, -1.0);
   for (int i = 0; i < 10; ++i) f.solve(Eigen::VectorXd::Ones(sys.K.rows()));
 }

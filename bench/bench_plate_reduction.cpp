@@ -11,7 +11,7 @@
 // Prints a markdown table on stdout, progress on stderr.
 //
 // Measurement notes:
-//   * times are wall times of one call each: reduction::solve_lanczos (its
+//   * times are wall times of one call each: linalg::solve_lanczos (its
 //     factorization of K - sigma M included) and reduction::reduce_component
 //     (partition, factorization of K_ii, the 12 constraint-mode solves, the
 //     Lanczos for the fixed-interface modes, the projection, and the basis T
@@ -34,7 +34,7 @@
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "reduction/component_modes.hpp"
-#include "reduction/eigen_solver.hpp"
+#include "linalg/eigen_solver.hpp"
 
 namespace {
 
@@ -121,10 +121,10 @@ int main(int argc, char** argv) {
         }
 
       std::fprintf(stderr, "  eigen solve (%ld DOFs)\n", static_cast<long>(sys.K.rows()));
-      reduction::EigenOptions eo;
+      linalg::EigenOptions eo;
       eo.count = o.modes;
       bool converged = true;
-      const Timed eigen = measure(o.repeat, [&] { converged &= reduction::solve_lanczos(sys.K, sys.M, eo).converged; });
+      const Timed eigen = measure(o.repeat, [&] { converged &= linalg::solve_lanczos(sys.K, sys.M, eo).converged; });
 
       std::fprintf(stderr, "  Guyan\n");
       reduction::ComponentModeOptions g;

@@ -48,4 +48,11 @@ nlohmann::ordered_json mass_record_json(const fe::MassProperties& p, const std::
   return j;
 }
 
+nlohmann::json mass_properties_json(const fe::MassProperties& p) {
+  const auto& J = p.inertia;
+  return {{"mass", p.mass},
+          {"cog", {p.cog.x(), p.cog.y(), p.cog.z()}},
+          {"inertia", {J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2)}}};
+}
+
 }  // namespace rigflex::io

@@ -24,6 +24,9 @@ struct MassRecordStd {
   std::array<double, 3> cog{};
   std::array<double, 6> inertia{};
 };
+// The spec's mass properties record as modes.json and reduced.json carry it:
+// mass, cog, inertia [Jxx Jyy Jzz Jxy Jxz Jyz], keys sorted.
+nlohmann::json mass_properties_json(const fe::MassProperties& p);
 nlohmann::ordered_json mass_record_json(const fe::MassProperties& p, const std::optional<MassRecordStd>& std = {});
 
 }  // namespace rigflex::io

@@ -9,7 +9,7 @@
 
 #include "fe/dof.hpp"
 #include "io/matrix_market.hpp"
-#include "io/modes_json.hpp"
+#include "io/mass_record.hpp"
 #include "io/reduced_layout.hpp"
 #include "io/reduced_mat.hpp"
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "reduction/mechanism.hpp"
+#include "linalg/mechanism.hpp"
 
 namespace rigflex::reduction {
 namespace {
@@ -25,13 +25,13 @@ constexpr int kCutoffFirstCount = 12;
 // The four blocks of a symmetric matrix split into interior (sparse) and
 // boundary (dense) parts. Only A_ib is kept of the off-diagonal pair (A_bi = A_ib').
 struct Blocks {
-  SpMat ii;
+  linalg::SpMat ii;
   Eigen::MatrixXd ib;  // interior x boundary
   Eigen::MatrixXd bb;
 };
 
 // position[j] >= 0: interior index; position[j] < 0: boundary index -position[j] - 1.
-Blocks partition(const SpMat& A, const std::vector<Eigen::Index>& position, Eigen::Index ni, Eigen::Index nb) {
+Blocks partition(const linalg::SpMat& A, const std::vector<Eigen::Index>& position, Eigen::Index ni, Eigen::Index nb) {
   Blocks b;
   b.ib = Eigen::MatrixXd::Zero(ni, nb);
   b.bb = Eigen::MatrixXd::Zero(nb, nb);
@@ -42,7 +42,7 @@ Blocks partition(const SpMat& A, const std::vector<Eigen::Index>& position, Eige
   for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
     const Eigen::Index pj = position[static_cast<size_t>(j)];
     if (pj >= 0) b.ii.startVec(pj);
-    for (SpMat::InnerIterator it(A, j); it; ++it) {
+    for (linalg::SpMat::InnerIterator it(A, j); it; ++it) {
       const Eigen::Index pr = position[static_cast<size_t>(it.row())];
       if (pj >= 0 && pr >= 0) {
         b.ii.insertBack(pr, pj) = it.value();
@@ -59,7 +59,7 @@ Blocks partition(const SpMat& A, const std::vector<Eigen::Index>& position, Eige
 
 Eigen::MatrixXd symmetric_part(const Eigen::MatrixXd& A) { return 0.5 * (A + A.transpose()); }
 
-void validate_boundary(const SpMat& K, const SpMat& M, const std::vector<Eigen::Index>& boundary) {
+void validate_boundary(const linalg::SpMat& K, const linalg::SpMat& M, const std::vector<Eigen::Index>& boundary) {
   if (K.rows() != K.cols() || M.rows() != M.cols() || K.rows() != M.rows()) {
     throw std::invalid_argument("reduce_component: K and M must be square and of equal size");
   }
@@ -78,9 +78,9 @@ void validate_boundary(const SpMat& K, const SpMat& M, const std::vector<Eigen::
 }
 
 // Lowest fixed-interface modes on the factorization of K_ii (shift 0).
-EigenResult fixed_interface_modes(const SpMat& Kii, const SpMat& Mii, SparseCholesky& factor,
+linalg::EigenResult fixed_interface_modes(const linalg::SpMat& Kii, const linalg::SpMat& Mii, linalg::SparseCholesky& factor,
                                   const ComponentModeOptions& o) {
-  EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.shift = 0.0;
   eo.tolerance = o.tolerance;
   eo.progress = o.progress;
@@ -92,7 +92,7 @@ EigenResult fixed_interface_modes(const SpMat& Kii, const SpMat& Mii, SparseChol
   const double cutoff = std::pow(2 * M_PI * *o.cutoff_hz, 2);
   eo.count = std::min(kCutoffFirstCount, n);
   for (;;) {
-    EigenResult r = solve_lanczos(Kii, Mii, eo, factor);
+    linalg::EigenResult r = solve_lanczos(Kii, Mii, eo, factor);
     const bool passed = r.converged_count > 0 && r.eigenvalues(r.converged_count - 1) > cutoff;
     if (!r.converged || passed || eo.count == n) {
       if (!r.converged) return r;
@@ -134,7 +134,7 @@ void ComponentModeOptions::validate(Eigen::Index interior_dofs) const {
   if (!(tolerance > 0 && tolerance < 1)) throw std::invalid_argument("tolerance: must lie in (0, 1)");
 }
 
-ReducedMatrices reduce_component(const SpMat& K, const SpMat& M, const std::vector<Eigen::Index>& boundary,
+ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M, const std::vector<Eigen::Index>& boundary,
                                  const ComponentModeOptions& options) {
   validate_boundary(K, M, boundary);
   const Eigen::Index n = K.rows();
@@ -177,12 +177,12 @@ ReducedMatrices reduce_component(const SpMat& K, const SpMat& M, const std::vect
   stats.partition_seconds = seconds_since(t0);
 
   t0 = Clock::now();
-  SparseCholesky factor;
-  const FactorStatus status = factor.factorize(Kb.ii);
+  linalg::SparseCholesky factor;
+  const linalg::FactorStatus status = factor.factorize(Kb.ii);
   stats.factor_seconds = seconds_since(t0);
   stats.factor_bytes = factor.statistics().factor_bytes;
   if (!status.ok || status.min_relative_pivot < kSingularPivot) {
-    for (Eigen::Index d : mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(interior[static_cast<size_t>(d)]);
+    for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(interior[static_cast<size_t>(d)]);
     out.message = "the interior stiffness K_ii is singular with the interface DOFs held: the interface does not "
                   "hold the frame statically (" + std::to_string(out.mechanism_dofs.size()) + " DOFs move freely)";
     return out;

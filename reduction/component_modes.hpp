@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "reduction/eigen_solver.hpp"
+#include "linalg/eigen_solver.hpp"
 #include "reduction/reduced_model.hpp"
-#include "reduction/sparse_cholesky.hpp"
+#include "linalg/sparse_cholesky.hpp"
 
 namespace rigflex::reduction {
 
@@ -35,7 +35,7 @@ struct ComponentModeOptions {
   // reduced vectors (checks, mode shapes). Costs n x (nb + nm) doubles.
   bool keep_basis = true;
   double tolerance = 1e-10;  // of the fixed-interface eigenpairs (EigenOptions::tolerance)
-  std::function<void(const EigenProgress&)> progress;  // optional
+  std::function<void(const linalg::EigenProgress&)> progress;  // optional
 
   // Throws std::invalid_argument naming the option: negative or missing mode
   // count, both count and cutoff, more modes than interior DOFs, cutoff <= 0.
@@ -62,7 +62,7 @@ struct ReducedMatrices {
   Eigen::MatrixXd K, M;              // reduced, symmetric
   Eigen::MatrixXd basis;             // T, if kept: rows = K.rows(), boundary rows are unit rows
   Eigen::VectorXd mode_eigenvalues;  // Omega^2 of the fixed-interface modes kept, (rad/s)^2
-  EigenResult modes_result;          // the Lanczos outcome (Craig-Bampton), residuals etc.
+  linalg::EigenResult modes_result;          // the Lanczos outcome (Craig-Bampton), residuals etc.
   ComponentModeStatistics statistics;
 };
 
@@ -71,7 +71,7 @@ struct ReducedMatrices {
 // out-of-range or repeated boundary, or mismatched K and M; numerical
 // outcomes (a singular K_ii, modes that do not converge) come back in the
 // result with ok = false.
-ReducedMatrices reduce_component(const SpMat& K, const SpMat& M, const std::vector<Eigen::Index>& boundary,
+ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M, const std::vector<Eigen::Index>& boundary,
                                  const ComponentModeOptions& options);
 
 }  // namespace rigflex::reduction

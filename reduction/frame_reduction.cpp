@@ -10,7 +10,7 @@
 #include "fe/dof.hpp"
 #include "fe/error.hpp"
 #include "fe/mass_properties.hpp"
-#include "reduction/pencil_scale.hpp"
+#include "linalg/pencil_scale.hpp"
 #include "reduction/rayleigh_damping.hpp"
 #include "reduction/reduction_checks.hpp"
 #include "reduction/state_space.hpp"
@@ -108,7 +108,7 @@ std::vector<Eigen::Index> interface_columns(const fe::Model& model, const fe::Do
 }
 
 struct FullModes {
-  EigenResult result;
+  linalg::EigenResult result;
   int rigid = 0;  // leading rigid-body modes
 };
 
@@ -121,7 +121,7 @@ FullModes full_model_modes(const fe::AssembledSystem& sys, FrameSupport support,
                                 " does not exist; the model has " + std::to_string(n - expected_rigid) +
                                 " elastic modes");
   }
-  EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = static_cast<int>(std::min<Eigen::Index>(n, expected_rigid + needed));
   FullModes f;
   f.result = solve_lanczos(sys.K, sys.M, eo);
@@ -131,12 +131,12 @@ FullModes full_model_modes(const fe::AssembledSystem& sys, FrameSupport support,
     throw ReductionError("the model is a mechanism: K - sigma M is singular", names);
   }
   if (!f.result.converged) throw ReductionError("full-model modes: " + f.result.message);
-  const double rigid_limit = kRigidFraction * pencil_scale(sys.K, sys.M);
+  const double rigid_limit = kRigidFraction * linalg::pencil_scale(sys.K, sys.M);
   while (f.rigid < f.result.eigenvalues.size() && f.result.eigenvalues(f.rigid) < rigid_limit) ++f.rigid;
   return f;
 }
 
-void frequency_checks(const FullModes& full, const EigenResult& reduced, const Eigen::MatrixXd& expanded,
+void frequency_checks(const FullModes& full, const linalg::EigenResult& reduced, const Eigen::MatrixXd& expanded,
                       double rigid_limit_reduced, ReductionChecks& c) {
   const Eigen::VectorXd fh = full.result.frequencies_hz();
   const Eigen::VectorXd rh = reduced.frequencies_hz();
@@ -251,8 +251,8 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
   report(o, "checks");
   ReductionChecks& c = r.checks;
   const double scale_r = r.K.trace() / r.M.trace();
-  const EigenResult reduced =
-      solve_dense(r.K, r.M, static_cast<int>(r.K.rows()), -kRigidFraction * std::max(scale_r, 1.0));
+  const linalg::EigenResult reduced =
+      linalg::solve_dense(r.K, r.M, static_cast<int>(r.K.rows()), -kRigidFraction * std::max(scale_r, 1.0));
   const double rigid_limit_r = kRigidFraction * scale_r;
   c.reduced_frequencies_hz = reduced.frequencies_hz();
   c.damping_ratios.resize(reduced.eigenvalues.size());

@@ -2,7 +2,7 @@
 
 namespace rigflex::reduction {
 
-ModalAnalysis run_modal_analysis(const fe::Model& model, const EigenOptions& options) {
+ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options) {
   ModalAnalysis a;
   a.system = fe::assemble(model);
   a.mass = fe::mass_properties(model);

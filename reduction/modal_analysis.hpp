@@ -5,7 +5,7 @@
 #include "fe/assembly.hpp"
 #include "fe/mass_properties.hpp"
 #include "fe/model.hpp"
-#include "reduction/eigen_solver.hpp"
+#include "linalg/eigen_solver.hpp"
 #include "reduction/modal_summary.hpp"
 
 namespace rigflex::reduction {
@@ -13,7 +13,7 @@ namespace rigflex::reduction {
 struct ModalAnalysis {
   fe::AssembledSystem system;
   fe::MassProperties mass;  // of the whole model
-  EigenResult result;
+  linalg::EigenResult result;
   ModalSummary summary;
   // Filled when K - sigma M was singular: "node 12 RZ", ...
   std::vector<std::string> mechanism;
@@ -22,6 +22,6 @@ struct ModalAnalysis {
 // Never throws for numerical outcomes: check result.converged and mechanism.
 // Throws fe::ModelError for an invalid model and std::invalid_argument for
 // invalid options.
-ModalAnalysis run_modal_analysis(const fe::Model& model, const EigenOptions& options);
+ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options);
 
 }  // namespace rigflex::reduction

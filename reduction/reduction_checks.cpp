@@ -88,7 +88,7 @@ std::vector<Eigen::Index> isostatic_rows(const Eigen::MatrixXd& rigid) {
   return rows;
 }
 
-Eigen::MatrixXd full_interface_flexibility(const SpMat& K, const std::vector<Eigen::Index>& boundary,
+Eigen::MatrixXd full_interface_flexibility(const linalg::SpMat& K, const std::vector<Eigen::Index>& boundary,
                                            const std::vector<Eigen::Index>& held) {
   const auto map = remaining_index(K.rows(), held);
   const Eigen::Index m = K.rows() - static_cast<Eigen::Index>(held.size());
@@ -96,17 +96,17 @@ Eigen::MatrixXd full_interface_flexibility(const SpMat& K, const std::vector<Eig
   t.reserve(static_cast<size_t>(K.nonZeros()));
   for (Eigen::Index j = 0; j < K.outerSize(); ++j) {
     if (map[static_cast<size_t>(j)] < 0) continue;
-    for (SpMat::InnerIterator it(K, j); it; ++it) {
+    for (linalg::SpMat::InnerIterator it(K, j); it; ++it) {
       const Eigen::Index r = map[static_cast<size_t>(it.row())];
       if (r >= 0) t.emplace_back(r, map[static_cast<size_t>(j)], it.value());
     }
   }
-  SpMat Ks(m, m);
+  linalg::SpMat Ks(m, m);
   Ks.setFromTriplets(t.begin(), t.end());
   t.clear();
   t.shrink_to_fit();
-  SparseCholesky factor;
-  const FactorStatus status = factor.factorize(Ks);
+  linalg::SparseCholesky factor;
+  const linalg::FactorStatus status = factor.factorize(Ks);
   if (!status.ok) throw std::runtime_error("static check: the held full stiffness is not positive definite");
   return unit_load_flexibility(m, map, boundary, [&](const Eigen::MatrixXd& E) { return factor.solve(E); });
 }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "reduction/reduced_model.hpp"
-#include "reduction/sparse_cholesky.hpp"
+#include "linalg/sparse_cholesky.hpp"
 
 namespace rigflex::reduction {
 
@@ -33,7 +33,7 @@ std::vector<Eigen::Index> isostatic_rows(const Eigen::MatrixXd& rigid);
 // (free-DOF indices), with the DOFs `held` additionally fixed (their rows
 // and columns removed). Factorizes K without `held` once; throws
 // std::runtime_error if that is not positive definite.
-Eigen::MatrixXd full_interface_flexibility(const SpMat& K, const std::vector<Eigen::Index>& boundary,
+Eigen::MatrixXd full_interface_flexibility(const linalg::SpMat& K, const std::vector<Eigen::Index>& boundary,
                                            const std::vector<Eigen::Index>& held);
 // The same from a dense reduced stiffness; `boundary` and `held` index its coordinates.
 Eigen::MatrixXd reduced_interface_flexibility(const Eigen::MatrixXd& K, const std::vector<Eigen::Index>& boundary,

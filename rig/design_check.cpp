@@ -127,21 +127,6 @@ CheckResult design_check(const RigModel& model, const CheckOptions& options) {
   return r;
 }
 
-double accuracy_score(const ErrorSummary& e, const AccuracyLimits& limits) {
-  limits.validate();
-  double worst = (std::abs(e.zG_mean_m) + 2 * e.zG_std_m) / limits.cog_height_m;
-  for (size_t i = 0; i < 3; ++i) {
-    worst = std::max(worst, (std::abs(e.moment_mean[i]) + 2 * e.moment_std[i]) / limits.moment_relative);
-  }
-  worst = std::max(worst, e.product_max / limits.product_of_largest);
-  return std::max(worst, e.cog_in_plane_max_m / limits.cog_in_plane_m);
-}
-
-Verdict predicted_verdict(const ErrorSummary& e, const AccuracyLimits& limits) {
-  const double score = accuracy_score(e, limits);
-  return score <= 1.0 ? Verdict::rigid_safe : score <= 2.0 ? Verdict::marginal : Verdict::use_flexible;
-}
-
 Verdict worse(Verdict a, Verdict b) { return static_cast<int>(a) >= static_cast<int>(b) ? a : b; }
 
 }  // namespace rigflex::rig

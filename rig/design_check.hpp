@@ -8,9 +8,7 @@
 #include <vector>
 
 #include "rig/linearization.hpp"
-#include "rig/mass_statistics.hpp"
 #include "rig/rig_model.hpp"
-#include "rig/virtual_identification.hpp"
 
 namespace rigflex::rig {
 
@@ -46,19 +44,6 @@ struct CheckResult {
 
 CheckResult design_check(const RigModel& model, const CheckOptions& options = {});
 
-// The frequency ratio alone misses what static deflection does: the joints
-// move with the rod loads, and the rigid algorithm misplaces the CoG height
-// even at 5.8x. So the check also identifies a virtual measurement
-// (rig/virtual_identification.hpp) and judges the rigid algorithm's error
-// against the rig's 2-sigma accuracy: |mean| + 2 std of zG and of each
-// moment, the largest product and in-plane CoG error inside the limits:
-// safe; inside twice the limits: marginal; else use the flexible algorithm.
-// (The command line blames flexibility only when the flexible algorithm
-// meets the accuracy on the same data; otherwise noise and excitation limit
-// the identification and the ratio decides.)
-Verdict predicted_verdict(const ErrorSummary& rigid, const AccuracyLimits& limits = {});
-// How far outside the accuracy limits (1 = on the limit), by the worst component.
-double accuracy_score(const ErrorSummary& e, const AccuracyLimits& limits = {});
 // The worse of two verdicts.
 Verdict worse(Verdict a, Verdict b);
 

@@ -27,8 +27,8 @@ Linearization linearize(const RigSystem& rig) {
   // A shift below the lowest swing frequency of any real rig (0.01 Hz) keeps
   // K - sigma M positive definite.
   const double shift = -std::pow(2.0 * std::numbers::pi * 0.01, 2);
-  lin.eigen = reduction::solve_dense(lin.K, lin.M, n, shift);
-  reduction::check_eigenpairs(lin.K.sparseView(), lin.M.sparseView(), lin.eigen);
+  lin.eigen = linalg::solve_dense(lin.K, lin.M, n, shift);
+  linalg::check_eigenpairs(lin.K.sparseView(), lin.M.sparseView(), lin.eigen);
   const Eigen::VectorXd f = lin.eigen.frequencies_hz();
   for (Eigen::Index j = 0; j < lin.eigen.eigenvalues.size(); ++j) {
     RigMode m;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "reduction/eigen_solver.hpp"
+#include "linalg/eigen_solver.hpp"
 #include "rig/equilibrium.hpp"
 #include "rig/rig_system.hpp"
 
@@ -34,7 +34,7 @@ struct Linearization {
   Equilibrium equilibrium;
   Eigen::MatrixXd K, M;        // symmetrized K
   double asymmetry = 0;        // max |K - K'| / max |K|
-  reduction::EigenResult eigen;
+  linalg::EigenResult eigen;
   std::vector<RigMode> modes;  // ascending frequency
 };
 

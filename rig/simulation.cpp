@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "rig/dense_eigen_solver.hpp"
+#include "rig/sundials_dense_lu.hpp"
 #include "rig/encoder.hpp"
 #include "rig/generalized_alpha.hpp"
 #include "rig/linearization.hpp"

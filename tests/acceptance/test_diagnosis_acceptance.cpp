@@ -22,11 +22,11 @@
 #include <sstream>
 
 #include "io/rig_reader.hpp"
-#include "rig/diagnosis.hpp"
+#include "diagnose/diagnosis.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
-#include "rig/model_comparison.hpp"
-#include "../rig/rig_cases.hpp"
+#include "diagnose/model_comparison.hpp"
+#include "support/rig_cases.hpp"
 
 namespace {
 
@@ -48,7 +48,7 @@ std::vector<const rig::VirtualHistory*> pointers(const std::vector<rig::VirtualH
 }
 
 struct Outcome {
-  rig::Diagnosis diagnosis;
+  diagnose::Diagnosis diagnosis;
   double force_before = 0, force_after = 0, zG_error = 0;
   double angle_before = 0, angle_after = 0;
 };
@@ -57,8 +57,8 @@ struct Outcome {
 // rig reader (as a user does with diagnose's effects file), compare again.
 Outcome run_loop(const rig::RigModel& start, const std::vector<rig::VirtualHistory>& data, double true_zG) {
   Outcome o;
-  o.diagnosis = rig::diagnose(start, pointers(data), {}, {});
-  const rig::ModelComparison before = rig::compare_model(rig::ResponseModel(start), pointers(data), {}, {});
+  o.diagnosis = diagnose::diagnose(start, pointers(data), {}, {});
+  const diagnose::ModelComparison before = diagnose::compare_model(diagnose::ResponseModel(start), pointers(data), {}, {});
   o.force_before = before.force_nrmse;
   o.angle_before = before.angle_nrmse;
   if (o.diagnosis.ranking.empty()) return o;
@@ -73,7 +73,7 @@ Outcome run_loop(const rig::RigModel& start, const std::vector<rig::VirtualHisto
   rig::RigModel fitted = start;
   io::add_effects(fitted, file);
   std::filesystem::remove(file);
-  const rig::ModelComparison after = rig::compare_model(rig::ResponseModel(fitted), pointers(data), {}, {});
+  const diagnose::ModelComparison after = diagnose::compare_model(diagnose::ResponseModel(fitted), pointers(data), {}, {});
   o.force_after = after.force_nrmse;
   o.angle_after = after.angle_nrmse;
   EXPECT_TRUE(after.identified.has_value()) << after.identification_error;
@@ -168,7 +168,7 @@ TEST(DiagnosisAcceptance, ControlDataBlamesNothing) {
     rig::RigModel truth = start;
     if (seed == 202u) truth.simulation.method = rig::IntegrationMethod::bdf;
     const auto data = measure(truth, seed);
-    const rig::Diagnosis d = rig::diagnose(start, pointers(data), {}, {});
+    const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
     std::cout << "control " << seed << ": " << d.summary << " (residual " << d.noise_ratio << " x noise)\n";
     EXPECT_FALSE(d.missing_effect.has_value()) << *d.missing_effect;
     for (const auto& e : d.ranking) EXPECT_FALSE(e.significant) << e.effect;
@@ -181,7 +181,7 @@ TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
   truth.effects.push_back(hidden_effect(7, start));  // rod length error
   truth.effects.push_back(hidden_effect(9, start));  // load cell gain
   const auto data = measure(truth, 300);
-  const rig::Diagnosis d = rig::diagnose(start, pointers(data), {}, {});
+  const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
   std::vector<std::string> top;
   for (size_t i = 0; i < std::min<size_t>(3, d.ranking.size()); ++i) top.push_back(d.ranking[i].effect);
   std::cout << "two effects: " << d.summary << "; top 3:";

@@ -10,8 +10,8 @@
 #include <string>
 
 #include "io/rig_reader.hpp"
-#include "rig/identification.hpp"
-#include "rig/mass_statistics.hpp"
+#include "identify/identification.hpp"
+#include "identify/mass_statistics.hpp"
 #include "rig/simulation.hpp"
 
 namespace {
@@ -26,8 +26,8 @@ struct Errors {
 };
 
 Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<rig::VirtualHistory>>& sets,
-                    rig::IdentificationAlgorithm algorithm) {
-  const rig::IdentificationRig idr = rig::identification_rig(model, algorithm);
+                    identify::IdentificationAlgorithm algorithm) {
+  const identify::IdentificationRig idr = identify::identification_rig(model, algorithm);
   const fe::MassProperties& truth = model.body;
   const double largest = truth.inertia.diagonal().maxCoeff();
   Errors e;
@@ -35,7 +35,7 @@ Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<ri
   for (const auto& set : sets) {
     std::vector<const rig::VirtualHistory*> ptrs;
     for (const auto& h : set) ptrs.push_back(&h);
-    const rig::IdentificationResult r = rig::identify(idr, ptrs, {});
+    const identify::IdentificationResult r = identify::identify(idr, ptrs, {});
     EXPECT_TRUE(r.observable) << r.message;
     EXPECT_TRUE(r.positive_definite);
     EXPECT_TRUE(r.triangle_inequality);
@@ -50,7 +50,7 @@ Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<ri
     e.cog_plane_worst =
         std::max({e.cog_plane_worst, std::abs(p.cog.x() - truth.cog.x()), std::abs(p.cog.y() - truth.cog.y())});
   }
-  const rig::SampleSummary s = rig::summarize(dz);
+  const identify::SampleSummary s = identify::summarize(dz);
   e.zG_mean = s.mean;
   e.zG_std = s.std.value_or(0.0);
   return e;
@@ -70,8 +70,8 @@ rig::RigModel large_rig() { return io::read_rig(std::string(RIGFLEX_SOURCE_DIR) 
 TEST(IdentificationAcceptance, LargeRigRigidMissesTheCogHeightFlexibleFindsIt) {
   const rig::RigModel model = large_rig();
   const auto sets = measure(model);
-  const Errors rigid = identify_all(model, sets, rig::IdentificationAlgorithm::rigid);
-  const Errors flexible = identify_all(model, sets, rig::IdentificationAlgorithm::flexible);
+  const Errors rigid = identify_all(model, sets, identify::IdentificationAlgorithm::rigid);
+  const Errors flexible = identify_all(model, sets, identify::IdentificationAlgorithm::flexible);
   EXPECT_GE(std::abs(rigid.zG_mean), 0.020) << "rigid algorithm on the compliant rig";
   EXPECT_LE(std::abs(flexible.zG_mean), 0.002);
   EXPECT_LE(flexible.zG_std, 0.005);
@@ -87,7 +87,7 @@ TEST(IdentificationAcceptance, StiffRigRigidAlgorithmIsWithin1mmAndHalfAPercent)
     const std::string n = e->name();
     return n == "fixed_frame_flexibility" || n == "carrying_frame_flexibility" || n == "rod_compliance";
   });
-  const Errors rigid = identify_all(model, measure(model), rig::IdentificationAlgorithm::rigid);
+  const Errors rigid = identify_all(model, measure(model), identify::IdentificationAlgorithm::rigid);
   EXPECT_LE(std::abs(rigid.zG_mean), 0.001);
   EXPECT_LE(rigid.cog_plane_worst, 0.001);
   EXPECT_LE(rigid.moment_worst, 0.005);

@@ -1,11 +1,11 @@
-# The command reports (io/reports.hpp) in a real browser: the compare,
+# The command reports (report/reports.hpp) in a real browser: the compare,
 # diagnosis, identification and sweep reports of synthetic results, written
 # by make_compare_report, are opened in headless Chromium (check_report.sh):
 # no errors in the page, every plot drawn, screenshot not blank. Fails (does
 # not skip) without chromium. Included from tests/CMakeLists.txt.
 add_executable(make_compare_report ${CMAKE_CURRENT_LIST_DIR}/make_compare_report.cpp)
 target_include_directories(make_compare_report PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})  # tests/: support/synthetic_reports.hpp
-target_link_libraries(make_compare_report PRIVATE rigflex_io rigflex_warnings)
+target_link_libraries(make_compare_report PRIVATE rigflex::report rigflex_warnings)
 set(rigflex_command_report_dir ${CMAKE_CURRENT_BINARY_DIR}/browser)
 # report kind and the plots it holds
 foreach(kind_plots compare:9 diagnosis:7 identification:2 sweep:2)

@@ -10,7 +10,7 @@
 #include <exception>
 #include <string>
 
-#include "io/reports.hpp"
+#include "report/reports.hpp"
 #include "support/synthetic_reports.hpp"
 
 namespace {
@@ -21,17 +21,17 @@ constexpr int kSamples = 7500;  // 15 s at 500 Hz
 constexpr double kStep = 0.002;
 constexpr int kBins = 2049;  // spectrum bins
 
-io::HtmlReport compare() {
-  rig::ModelComparison c = test::comparison(kSamples, kStep);
+report::HtmlReport compare() {
+  diagnose::ModelComparison c = test::comparison(kSamples, kStep);
   c.analysis = test::analysis(c.channels, kBins);
   c.histories[1].source = "data/set1/h2 <odd> & \"quoted\".csv";  // escaped in the page
-  return io::compare_report(c, test::context(), test::study());
+  return report::compare_report(c, test::context(), test::study());
 }
 
-io::HtmlReport diagnosis() {
-  const rig::Diagnosis d = test::diagnosis(true, kSamples, kStep);
-  const rig::ResidualAnalysis a = test::analysis(rig::channel_names(test::kRods), kBins);
-  return io::diagnosis_report(d, test::context(), &a);
+report::HtmlReport diagnosis() {
+  const diagnose::Diagnosis d = test::diagnosis(true, kSamples, kStep);
+  const diagnose::ResidualAnalysis a = test::analysis(diagnose::channel_names(test::kRods), kBins);
+  return report::diagnosis_report(d, test::context(), &a);
 }
 
 }  // namespace
@@ -43,10 +43,10 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const io::HtmlReport r = kind == "compare"     ? compare()
+    const report::HtmlReport r = kind == "compare"     ? compare()
                              : kind == "diagnosis" ? diagnosis()
-                             : kind == "sweep"     ? io::sweep_html("light-truck", test::sweep_points())
-                                                   : io::identification_html(test::identification(true));
+                             : kind == "sweep"     ? report::sweep_html("light-truck", test::sweep_points())
+                                                   : report::identification_html(test::identification(true));
     r.write(argv[2]);
     std::printf("%d\n", r.plot_count());
   } catch (const std::exception& e) {

@@ -8,13 +8,13 @@
 #include <numbers>
 #include <string>
 
-#include "io/html_report.hpp"
+#include "report/html_report.hpp"
 
 namespace {
 
-using rigflex::io::HtmlReport;
-using rigflex::io::Plot;
-using rigflex::io::PlotSeries;
+using rigflex::report::HtmlReport;
+using rigflex::report::Plot;
+using rigflex::report::PlotSeries;
 
 constexpr double pi = std::numbers::pi;
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "io/identification_report.hpp"
+#include "report/identification_report.hpp"
 #include "io/input_error.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
@@ -73,18 +73,18 @@ TEST(MassRecord, JsonOfTheRecordReadsBack) {
 TEST(MassRecord, ReadsTheMeanOfWhatIdentifyWrites) {
   // --tare and --reference take identify's own output: its `mean` carries
   // std, the 95 % interval and principal axes besides the record.
-  io::IdentificationReport rep;
+  report::IdentificationReport rep;
   rep.rig = "r";
   rep.set_names = {"set1", "set2"};
   rep.set_files = {{"a.csv"}, {"b.csv"}};
-  std::vector<rig::IdentificationResult> results(2);
+  std::vector<identify::IdentificationResult> results(2);
   for (int k = 0; k < 2; ++k) {
     results[k].observable = true;
     results[k].properties.mass = 400;
     results[k].properties.cog = Eigen::Vector3d(0.01 * k, 0.0, -0.1);
     results[k].properties.inertia = rig::inertia_tensor({300.0 + k, 420, 650, 1, 0, 0});
   }
-  rep.add(rig::IdentificationAlgorithm::rigid, results);
+  rep.add(identify::IdentificationAlgorithm::rigid, results);
   const nlohmann::ordered_json j = rep.json();
   ASSERT_TRUE(j["mean"].contains("confidence_interval_95"));
   const fe::MassProperties p = io::parse_mass_record(j.dump(2), "identification.json");

@@ -18,7 +18,7 @@ using test::line_of;
 
 // Three vertical rods of 1 m at 0.4 m around P (|A - P - B| = L exactly), a
 // 100 kg body near the uniform disk of multifilar_rig() in
-// tests/rig/rig_cases.hpp (Jzz a little below Jxx + Jyy, so that the products
+// tests/support/rig_cases.hpp (Jzz a little below Jxx + Jyy, so that the products
 // of inertia keep the principal moments a triangle).
 const char* kValid = R"(name: three-rod
 geometry:

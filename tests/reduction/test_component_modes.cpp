@@ -19,7 +19,7 @@ namespace {
 using reduction::ComponentModeOptions;
 using reduction::ReducedMatrices;
 using reduction::ReductionMethod;
-using reduction::SpMat;
+using linalg::SpMat;
 
 SpMat sparse(const Eigen::MatrixXd& A) { return A.sparseView(); }
 
@@ -147,9 +147,9 @@ TEST(Guyan, PortalWithMasslessMembersIsExact) {
   // The full model has no mass off the retained DOFs: the same eigenvalue up
   // to rounding, which the condition of K (~1e8 with A = 1e3 m^2) sets at
   // ~1e-8 relative for either computation.
-  reduction::EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = 1;
-  const auto full = reduction::solve_lanczos(sys.K, sys.M, eo);
+  const auto full = linalg::solve_lanczos(sys.K, sys.M, eo);
   ASSERT_TRUE(full.converged);
   EXPECT_NEAR(es.eigenvalues()(0) / full.eigenvalues(0), 1.0, 2e-8);
 }
@@ -210,9 +210,9 @@ TEST(CraigBampton, StructureAndFixedInterfaceModes) {
   fe::Model held = m;
   for (fe::NodeId n : m.node_set("upper_joints")) test::fix(held, n, {0, 1, 2});
   const fe::AssembledSystem hs = fe::assemble(held);
-  reduction::EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = 8;
-  const auto ref = reduction::solve_lanczos(hs.K, hs.M, eo);
+  const auto ref = linalg::solve_lanczos(hs.K, hs.M, eo);
   ASSERT_TRUE(ref.converged);
   for (int k = 0; k < 8; ++k) EXPECT_NEAR(r.mode_eigenvalues(k) / ref.eigenvalues(k), 1.0, 1e-9) << k;
 }
@@ -221,9 +221,9 @@ TEST(CraigBampton, ConvergesFromAboveAsModesAreAdded) {
   const fe::Model m = test::rig_fixed_frame(4);
   const fe::AssembledSystem sys = fe::assemble(m);
   const auto b = joint_translations(m, sys, "upper_joints");
-  reduction::EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = 6;
-  const auto full = reduction::solve_lanczos(sys.K, sys.M, eo);
+  const auto full = linalg::solve_lanczos(sys.K, sys.M, eo);
   ASSERT_TRUE(full.converged);
   Eigen::VectorXd previous = Eigen::VectorXd::Constant(6, 1e300);
   for (int modes : {0, 2, 5, 10, 20, 40, 80, 160}) {

@@ -104,9 +104,9 @@ TEST(FrameReduction, RayleighDampingIsExactAtTheChosenModes) {
   const ReducedFrame r = reduction::reduce_frame(m, o);
   // Independently: the full model's modes 1 and 3 under C = alpha M + beta K.
   const fe::AssembledSystem sys = fe::assemble(m);
-  reduction::EigenOptions eo;
+  linalg::EigenOptions eo;
   eo.count = 4;
-  const auto full = reduction::solve_lanczos(sys.K, sys.M, eo);
+  const auto full = linalg::solve_lanczos(sys.K, sys.M, eo);
   ASSERT_TRUE(full.converged);
   for (int mode : {1, 3}) {
     const Eigen::VectorXd phi = full.vectors.col(mode - 1);

@@ -29,7 +29,7 @@
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
 #include "reduction/frame_reduction.hpp"
-#include "reduction/sparse_cholesky.hpp"
+#include "linalg/sparse_cholesky.hpp"
 #include "rig/frame_models.hpp"
 #include "support/frame_models.hpp"
 
@@ -105,7 +105,7 @@ struct FullFrame {
   fe::AssembledSystem system = fe::assemble(model);
   std::vector<fe::NodeId> joint_ids = model.node_set("upper_joints");
   std::vector<Eigen::Index> joint_cols;  // free-DOF columns of the joints' UX UY UZ, in set order
-  reduction::SparseCholesky factor;
+  linalg::SparseCholesky factor;
 
   FullFrame() {
     if (joint_ids.size() != 3) throw std::runtime_error("upper_joints: expected 3 nodes");
@@ -120,7 +120,7 @@ struct FullFrame {
         joint_cols.push_back(col);
       }
     }
-    const reduction::FactorStatus st = factor.factorize(system.K);
+    const linalg::FactorStatus st = factor.factorize(system.K);
     if (!st.ok) throw std::runtime_error("full stiffness: " + st.message);
   }
 

@@ -21,7 +21,7 @@
 #include "rig/effects.hpp"
 #include "rig/encoder.hpp"
 #include "rig/linearization.hpp"
-#include "rig/rig_cases.hpp"
+#include "support/rig_cases.hpp"
 #include "rig/simulation.hpp"
 
 using namespace rigflex;

@@ -8,7 +8,7 @@
 #include "rig/design_check.hpp"
 #include "rig/effects.hpp"
 #include "rig/linearization.hpp"
-#include "rig/rig_cases.hpp"
+#include "support/rig_cases.hpp"
 
 using namespace rigflex;
 using rig::Vec3;

@@ -9,7 +9,7 @@
 #include "rig/encoder.hpp"
 #include "rig/generalized_alpha.hpp"
 #include "rig/linearization.hpp"
-#include "rig/rig_cases.hpp"
+#include "support/rig_cases.hpp"
 #include "rig/simulation.hpp"
 
 using namespace rigflex;

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "io/reports.hpp"
-#include "rig/identification_rig.hpp"
-#include "rig/model_response.hpp"
+#include "report/reports.hpp"
+#include "identify/identification_rig.hpp"
+#include "diagnose/model_response.hpp"
 
 namespace rigflex::test {
 
@@ -20,8 +20,8 @@ inline constexpr int kRods = 3;
 
 // A history of a 3-rod rig: decaying swing on static rod loads; the model
 // decays a little slower and misses a 12 Hz ringing.
-inline rig::HistoryComparison history(int k, int samples = 400, double dt = 0.02) {
-  rig::HistoryComparison h;
+inline diagnose::HistoryComparison history(int k, int samples = 400, double dt = 0.02) {
+  diagnose::HistoryComparison h;
   h.source = "data/set1/h" + std::to_string(k + 1) + ".csv";
   h.target.record.step_s = dt;
   h.target.record.t = Eigen::VectorXd::LinSpaced(samples, 0.0, dt * (samples - 1));
@@ -44,8 +44,8 @@ inline rig::HistoryComparison history(int k, int samples = 400, double dt = 0.02
   h.target.measured = h.target.record.channels;
   h.band_model = h.model;
   for (int i = 0; i < samples; ++i) h.target.at.push_back(i);
-  h.nrmse = rig::nrmse_of(h.target.measured, h.band_model);
-  h.raw_nrmse = rig::nrmse_of(h.measured(), h.model);
+  h.nrmse = diagnose::nrmse_of(h.target.measured, h.band_model);
+  h.raw_nrmse = diagnose::nrmse_of(h.measured(), h.model);
   h.fit_window_nrmse = 0.08;
   h.fit.converged = true;
   h.fit.iterations = 6;
@@ -53,9 +53,9 @@ inline rig::HistoryComparison history(int k, int samples = 400, double dt = 0.02
   return h;
 }
 
-inline rig::ResidualAnalysis analysis(const std::vector<std::string>& channels, int bins = 129) {
+inline diagnose::ResidualAnalysis analysis(const std::vector<std::string>& channels, int bins = 129) {
   const auto C = static_cast<Eigen::Index>(channels.size());
-  rig::ResidualAnalysis a;
+  diagnose::ResidualAnalysis a;
   a.channels = channels;
   a.noise = Eigen::VectorXd::Constant(C, 1e-4);
   a.noise_ratio = Eigen::VectorXd::LinSpaced(C, 1.5, 9.0);
@@ -96,20 +96,20 @@ inline fe::MassProperties body(double zG = 0.812) {
   return p;
 }
 
-inline rig::ModelComparison comparison(int samples = 400, double dt = 0.02) {
-  rig::ModelComparison c;
-  c.channels = rig::channel_names(kRods);
+inline diagnose::ModelComparison comparison(int samples = 400, double dt = 0.02) {
+  diagnose::ModelComparison c;
+  c.channels = diagnose::channel_names(kRods);
   c.histories = {history(0, samples, dt), history(1, samples, dt)};
-  c.nrmse = rig::pooled_nrmse(c.histories);
-  c.overall_nrmse = rig::rms_of(c.nrmse, 0, 3 * kRods);
-  c.force_nrmse = rig::rms_of(c.nrmse, 0, kRods);
-  c.angle_nrmse = rig::rms_of(c.nrmse, kRods, 2 * kRods);
-  c.raw_nrmse = rig::pooled_nrmse(c.histories, true);
-  c.raw_overall_nrmse = rig::rms_of(c.raw_nrmse, 0, 3 * kRods);
-  c.raw_force_nrmse = rig::rms_of(c.raw_nrmse, 0, kRods);
+  c.nrmse = diagnose::pooled_nrmse(c.histories);
+  c.overall_nrmse = diagnose::rms_of(c.nrmse, 0, 3 * kRods);
+  c.force_nrmse = diagnose::rms_of(c.nrmse, 0, kRods);
+  c.angle_nrmse = diagnose::rms_of(c.nrmse, kRods, 2 * kRods);
+  c.raw_nrmse = diagnose::pooled_nrmse(c.histories, true);
+  c.raw_overall_nrmse = diagnose::rms_of(c.raw_nrmse, 0, 3 * kRods);
+  c.raw_force_nrmse = diagnose::rms_of(c.raw_nrmse, 0, kRods);
   c.analysis = analysis(c.channels);
-  c.algorithm = rig::IdentificationAlgorithm::flexible;
-  rig::IdentificationResult id;
+  c.algorithm = identify::IdentificationAlgorithm::flexible;
+  identify::IdentificationResult id;
   id.observable = true;
   id.properties = body(0.8155);
   id.standard_deviation.fill(1e-3);
@@ -120,8 +120,8 @@ inline rig::ModelComparison comparison(int samples = 400, double dt = 0.02) {
   return c;
 }
 
-inline io::CompareContext context() {
-  io::CompareContext x;
+inline report::CompareContext context() {
+  report::CompareContext x;
   x.rig = "light-truck";
   x.model_label = "rig.yaml + drag.yaml";
   x.model_effects = {"air_drag"};
@@ -129,8 +129,8 @@ inline io::CompareContext context() {
   return x;
 }
 
-inline std::vector<io::StudyEntry> study() {
-  io::StudyEntry a, b;
+inline std::vector<report::StudyEntry> study() {
+  report::StudyEntry a, b;
   a.version = 1;
   a.label = "rig.yaml";
   a.overall_nrmse = 0.3;
@@ -143,8 +143,8 @@ inline std::vector<io::StudyEntry> study() {
   return {a, b};
 }
 
-inline rig::EffectFit effect(const std::string& name, double explained, bool significant) {
-  rig::EffectFit e;
+inline diagnose::EffectFit effect(const std::string& name, double explained, bool significant) {
+  diagnose::EffectFit e;
   e.effect = name;
   e.explained_fraction = explained;
   e.linear_explained_fraction = explained * 0.9;
@@ -156,8 +156,8 @@ inline rig::EffectFit effect(const std::string& name, double explained, bool sig
   return e;
 }
 
-inline rig::Diagnosis diagnosis(bool with_missing, int samples = 400, double dt = 0.02) {
-  rig::Diagnosis d;
+inline diagnose::Diagnosis diagnosis(bool with_missing, int samples = 400, double dt = 0.02) {
+  diagnose::Diagnosis d;
   d.baseline = {history(0, samples, dt), history(1, samples, dt)};
   d.noise_ratio = 4.2;
   d.samples = 3600;
@@ -174,8 +174,8 @@ inline rig::Diagnosis diagnosis(bool with_missing, int samples = 400, double dt 
   return d;
 }
 
-inline rig::IdentificationResult identified(double zG) {
-  rig::IdentificationResult r;
+inline identify::IdentificationResult identified(double zG) {
+  identify::IdentificationResult r;
   r.observable = true;
   r.properties = body(zG);
   r.positive_definite = r.triangle_inequality = true;
@@ -184,24 +184,24 @@ inline rig::IdentificationResult identified(double zG) {
   return r;
 }
 
-inline io::IdentificationReport identification(bool reference) {
-  io::IdentificationReport rep;
+inline report::IdentificationReport identification(bool reference) {
+  report::IdentificationReport rep;
   rep.rig = "light-truck";
   rep.set_names = {"sets/s1", "sets/s2", "sets/s3", "sets/s4", "sets/s5"};
   rep.set_files.resize(5);
   if (reference) rep.reference = body();
-  std::vector<rig::IdentificationResult> rigid, flexible;
+  std::vector<identify::IdentificationResult> rigid, flexible;
   for (int k = 0; k < 5; ++k) {
     rigid.push_back(identified(0.861 + 0.002 * std::sin(k)));
     flexible.push_back(identified(0.812 + 0.0015 * std::cos(k)));
   }
-  rep.add(rig::IdentificationAlgorithm::rigid, rigid);
-  rep.add(rig::IdentificationAlgorithm::flexible, flexible);
+  rep.add(identify::IdentificationAlgorithm::rigid, rigid);
+  rep.add(identify::IdentificationAlgorithm::flexible, flexible);
   return rep;
 }
 
-inline rig::ErrorSummary errors(double zG_m, double jyy) {
-  rig::ErrorSummary e;
+inline identify::ErrorSummary errors(double zG_m, double jyy) {
+  identify::ErrorSummary e;
   e.sets = 3;
   e.zG_mean_m = zG_m;
   e.zG_std_m = 0.1 * std::abs(zG_m);
@@ -209,14 +209,14 @@ inline rig::ErrorSummary errors(double zG_m, double jyy) {
   return e;
 }
 
-inline std::vector<rig::SweepPoint> sweep_points() {
-  std::vector<rig::SweepPoint> pts;
+inline std::vector<identify::SweepPoint> sweep_points() {
+  std::vector<identify::SweepPoint> pts;
   for (int k = 0; k < 4; ++k) {
-    for (const auto kind : {rig::SweepKind::mass, rig::SweepKind::stiffness}) {
-      rig::SweepPoint p;
+    for (const auto kind : {identify::SweepKind::mass, identify::SweepKind::stiffness}) {
+      identify::SweepPoint p;
       p.kind = kind;
       p.scale = std::pow(2.0, k);
-      p.f1_hz = kind == rig::SweepKind::mass ? 8.0 / std::sqrt(p.scale) : 2.0 * std::sqrt(p.scale);
+      p.f1_hz = kind == identify::SweepKind::mass ? 8.0 / std::sqrt(p.scale) : 2.0 * std::sqrt(p.scale);
       p.swing_max_hz = 0.6;
       p.ratio = *p.f1_hz / 0.6;
       p.rigid = errors(0.05 / *p.ratio, 0.1 / *p.ratio);
@@ -226,8 +226,8 @@ inline std::vector<rig::SweepPoint> sweep_points() {
   }
   pts[1].rigid.reset();
   pts[1].failure = "rigid: not observable";
-  rig::SweepPoint rigid_rods;
-  rigid_rods.kind = rig::SweepKind::stiffness;
+  identify::SweepPoint rigid_rods;
+  rigid_rods.kind = identify::SweepKind::stiffness;
   rigid_rods.scale = 100;
   rigid_rods.failure = "no static equilibrium";
   pts.push_back(rigid_rods);

@@ -33,7 +33,7 @@ std::vector<double> verification_frequencies(const std::string& file, const std:
 }
 
 reduction::ModalAnalysis checked_modal_analysis(const fe::Model& m, int count) {
-  reduction::EigenOptions opt;
+  linalg::EigenOptions opt;
   opt.count = count;
   auto a = reduction::run_modal_analysis(m, opt);
   EXPECT_TRUE(a.result.converged) << a.result.message;

@@ -1,0 +1,81 @@
+#include "diagnose/model_comparison.hpp"
+
+#include <cstdio>
+#include <mutex>
+
+#include "identify/identification_kinematics.hpp"
+#include "identify/identification_rig.hpp"
+#include "rig/parallel_for.hpp"
+
+namespace rigflex::diagnose {
+
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::VirtualHistory*>& records,
+                              const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
+  options.compare.validate();
+  if (records.empty()) throw std::invalid_argument("compare needs at least one history");
+  const int H = static_cast<int>(records.size());
+  const int n = m.system.rods();
+  ModelComparison c;
+  c.channels = channel_names(n);
+  c.histories.resize(records.size());
+  std::mutex progress;
+  int done = 0;
+  rig::parallel_for(H, options.threads, [&](int j) {
+    const std::string source = j < static_cast<int>(sources.size()) ? sources[j] : "history " + std::to_string(j + 1);
+    try {
+      c.histories[j] = compare_history(m, *records[j], source, options.compare);
+    } catch (identify::RecordError& e) {
+      e.set_history(j);
+      throw;
+    }
+    if (options.progress) {
+      std::lock_guard<std::mutex> lock(progress);
+      options.progress(++done, H);
+    }
+  });
+  c.nrmse = pooled_nrmse(c.histories);
+  c.overall_nrmse = rms_of(c.nrmse, 0, 3 * n);
+  c.force_nrmse = rms_of(c.nrmse, 0, n);
+  c.angle_nrmse = rms_of(c.nrmse, n, 2 * n);
+  c.raw_nrmse = pooled_nrmse(c.histories, true);
+  c.raw_overall_nrmse = rms_of(c.raw_nrmse, 0, 3 * n);
+  c.raw_force_nrmse = rms_of(c.raw_nrmse, 0, n);
+  c.analysis = analyse_residuals(m, c.histories);
+
+  for (const auto& h : c.histories) {
+    if (h.fit_window_nrmse > kFollowLimit) {
+      char figures[64];
+      std::snprintf(figures, sizeof figures, "NRMSE %.2f over the first %.1f s", h.fit_window_nrmse,
+                    options.compare.fit_window_s);
+      c.warnings.push_back(h.source + ": the model does not follow the data from the start (" + figures +
+                           "): check the rod order and encoder axes against the rig file, the units (N, rad, s), "
+                           "that the record starts after release, and run `rigflex diagnose` for a large missing "
+                           "effect");
+    }
+    if (!h.fit.converged) {
+      c.warnings.push_back(h.source + ": the swing state fit did not converge");
+    }
+  }
+
+  if (options.identify) {
+    const bool flexible = m.system.assembly().fixed_frame || m.system.assembly().carrying_frame ||
+                          !m.system.assembly().rod_stiffness.empty();
+    c.algorithm = flexible ? identify::IdentificationAlgorithm::flexible : identify::IdentificationAlgorithm::rigid;
+    try {
+      const identify::IdentificationRig idr = identify::identification_rig(m.system.model(), c.algorithm);
+      identify::IdentificationResult r = identify::identify(idr, records, {});
+      if (r.observable) {
+        c.identified = std::move(r);
+      } else {
+        c.identification_error = r.message;
+      }
+    } catch (const identify::RecordError&) {
+      throw;
+    } catch (const std::exception& e) {
+      c.identification_error = e.what();
+    }
+  }
+  return c;
+}
+
+}  // namespace rigflex::diagnose

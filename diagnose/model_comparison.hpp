@@ -1,0 +1,51 @@
+#pragma once
+// `rigflex compare` as a function: every history compared with the model
+// (rig/compare.hpp), the residuals analysed (rig/residual_analysis.hpp), the
+// mass properties identified from the same records with the model's
+// algorithm (flexible when the model has a flexible frame or rods), and the
+// checks that tell a user the model does not fit the data at all.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fe/mass_properties.hpp"
+#include "diagnose/history_comparison.hpp"
+#include "identify/identification.hpp"
+#include "diagnose/residual_analysis.hpp"
+
+namespace rigflex::diagnose {
+
+struct ModelComparison {
+  std::vector<std::string> channels;
+  std::vector<HistoryComparison> histories;
+  Eigen::VectorXd nrmse;  // per channel, pooled, swing band (rig/compare.hpp)
+  double overall_nrmse = 0, force_nrmse = 0, angle_nrmse = 0;
+  Eigen::VectorXd raw_nrmse;  // per channel, pooled, every sample
+  double raw_overall_nrmse = 0, raw_force_nrmse = 0;
+  ResidualAnalysis analysis;
+  identify::IdentificationAlgorithm algorithm = identify::IdentificationAlgorithm::rigid;
+  std::optional<identify::IdentificationResult> identified;  // empty with identification_error set
+  std::string identification_error;
+  std::vector<std::string> warnings;  // what to check when the model does not follow the data
+};
+
+struct ModelComparisonOptions {
+  CompareOptions compare;
+  bool identify = true;
+  int threads = 0;
+  std::function<void(int done, int total)> progress;
+};
+
+// RecordError-free: a record that does not fit the rig throws
+// std::invalid_argument naming the source (rod count) or a RecordError from
+// the identification's kinematics (an impossible angle), with its history set.
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::VirtualHistory*>& records,
+                              const std::vector<std::string>& sources, const ModelComparisonOptions& options);
+
+// The warning thresholds: a model that misses the data's first seconds by
+// more than kFollowLimit (overall swing-band NRMSE over the fit window: worse
+// than no model of the swing at all) does not follow the data from the start.
+constexpr double kFollowLimit = 1.0;
+
+}  // namespace rigflex::diagnose

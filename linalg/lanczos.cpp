@@ -1,0 +1,163 @@
+// solve_lanczos: the eigen solver's entry points. Factorization of the
+// shifted pencil (pencil_factorization.cpp), the iteration
+// (thick_restart_lanczos.cpp), then a Rayleigh-Ritz step on the pencil and
+// the independent check of every pair.
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "linalg/block_kernels.hpp"
+#include "linalg/eigen_postprocess.hpp"
+#include "linalg/eigen_solver.hpp"
+#include "linalg/thick_restart_lanczos.hpp"
+
+namespace rigflex::linalg {
+namespace {
+
+using Eigen::Index;
+using Eigen::MatrixXd;
+
+detail::LanczosSettings settings_from(const EigenOptions& options, Index n, const SparseCholesky& factor) {
+  detail::LanczosSettings s;
+  s.count = options.count;
+  s.block = options.resolved_block(n, factor.statistics().factor_nnz);
+  s.basis = options.resolved_subspace(n, static_cast<int>(s.block));
+  s.tolerance = options.tolerance;
+  s.max_restarts = options.max_restarts;
+  s.verify = options.verify_multiplicities;
+  s.seed = options.seed;
+  s.progress = &options.progress;
+  return s;
+}
+
+void check_sizes(const SpMat& K, const SpMat& M) {
+  if (K.rows() != K.cols() || M.rows() != M.cols() || K.rows() != M.rows()) {
+    throw std::invalid_argument("solve_lanczos: K and M must be square and of equal size");
+  }
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool use_dense(const EigenOptions& options, Index n) {
+  return options.method == EigenMethod::dense ||
+         (options.method == EigenMethod::automatic && n <= options.dense_threshold);
+}
+
+// The iteration on a checked factorization; the pairs are not yet
+// post-processed (see finish).
+EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
+                    SparseCholesky& factor_at_shift) {
+  check_sizes(K, M);
+  options.validate(K.rows());
+  if (!factor_at_shift.factorized() || factor_at_shift.rows() != K.rows()) {
+    throw std::invalid_argument("solve_lanczos: the factorization does not match K - sigma M");
+  }
+  const std::optional<double> factored = factor_at_shift.shift();
+  if (!factored && !options.shift) {
+    throw std::invalid_argument("solve_lanczos: the shift of the factorization is unknown");
+  }
+  if (factored && options.shift && *factored != *options.shift) {
+    throw std::invalid_argument("solve_lanczos: options.shift differs from the factorization's shift");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  EigenResult r;
+  r.requested = options.count;
+  r.shift = factored ? *factored : *options.shift;
+  const detail::LanczosSettings settings = settings_from(options, K.rows(), factor_at_shift);
+  r.block_size = static_cast<int>(settings.block);
+  detail::LanczosOutcome outcome = detail::thick_restart_lanczos(M, factor_at_shift, settings);
+  r.vectors = std::move(outcome.X);
+  r.converged = outcome.converged;
+  r.message = std::move(outcome.message);
+  r.restarts = outcome.restarts;
+  r.operator_applications = outcome.applications;
+  r.iteration_seconds = seconds_since(start);
+  return r;
+}
+
+// Rayleigh-Ritz on the pencil in span(X) (see rayleigh_ritz in
+// eigen_postprocess.hpp), with the products in the block kernels: K X for
+// 20 vectors in three sweeps over K (K symmetric, both triangles stored)
+// instead of Eigen's twenty. Replaces X by the M-orthonormal Ritz vectors;
+// returns the Ritz values, ascending.
+Eigen::VectorXd block_rayleigh_ritz(const SpMat& K, const SpMat& M, MatrixXd& X) {
+  const Index k = X.cols();
+  if (k == 0) return Eigen::VectorXd();
+  const detail::SerialBlas serial;  // skinny products: threads only cost
+  MatrixXd product(X.rows(), k), Kr(k, k), Mr(k, k);
+  detail::symmetric_times(K, X, product);
+  detail::gemm(true, X, product, 1.0, 0.0, Kr);
+  detail::symmetric_times(M, X, product);
+  detail::gemm(true, X, product, 1.0, 0.0, Mr);
+  product = MatrixXd();
+  Kr = 0.5 * (Kr + Kr.transpose()).eval();
+  Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  const Eigen::GeneralizedSelfAdjointEigenSolver<MatrixXd> eig(Kr, Mr);
+  // X = X V (V is Mr-orthonormal) in place, a slice of rows at a time.
+  constexpr Index kRows = 2048;
+  MatrixXd slice;
+  for (Index row = 0; row < X.rows(); row += kRows) {
+    const Index rows = std::min(kRows, X.rows() - row);
+    slice.resize(rows, k);
+    detail::gemm(false, X.middleRows(row, rows), eig.eigenvectors(), 1.0, 0.0, slice);
+    X.middleRows(row, rows) = slice;
+  }
+  return eig.eigenvalues();
+}
+
+// Rayleigh-Ritz on the pencil and the independent check of every pair. It
+// needs K and M only: the one-call form runs it after releasing its factor,
+// whose memory would otherwise add to the temporaries of these products.
+void finish(const SpMat& K, const SpMat& M, EigenResult& r) {
+  const auto start = std::chrono::steady_clock::now();
+  r.eigenvalues = block_rayleigh_ritz(K, M, r.vectors);
+  normalize_signs(r.vectors);
+  r.converged_count = static_cast<int>(r.eigenvalues.size());
+  r.iteration_seconds += seconds_since(start);
+  check_eigenpairs(K, M, r);
+}
+
+}  // namespace
+
+EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& options,
+                          SparseCholesky& factor_at_shift) {
+  EigenResult r = iterate(K, M, options, factor_at_shift);
+  finish(K, M, r);
+  return r;
+}
+
+EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& options) {
+  check_sizes(K, M);
+  options.validate(K.rows());
+  if (use_dense(options, K.rows())) {
+    const double sigma = options.shift ? *options.shift : default_shift(K, M);
+    return solve_dense(MatrixXd(K), MatrixXd(M), options.count, sigma);
+  }
+  const auto start = std::chrono::steady_clock::now();
+  auto factor = std::make_unique<SparseCholesky>();
+  const PencilFactorization pencil = factorize_pencil(K, M, options.shift, *factor);
+  const double factor_seconds = seconds_since(start);
+  if (!pencil.ok) {
+    EigenResult r;
+    r.requested = options.count;
+    r.shift = pencil.shift;
+    r.message = pencil.message;
+    r.mechanism_dofs = pencil.mechanism_dofs;
+    r.factor_seconds = factor_seconds;
+    return r;
+  }
+  EigenOptions at_shift = options;
+  at_shift.shift = pencil.shift;
+  EigenResult r = iterate(K, M, at_shift, *factor);
+  factor.reset();
+  finish(K, M, r);
+  r.factor_seconds = factor_seconds;
+  return r;
+}
+
+}  // namespace rigflex::linalg

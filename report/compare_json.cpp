@@ -1,0 +1,190 @@
+#include "report/compare_json.hpp"
+
+#include <cmath>
+
+#include "report/json_write.hpp"
+#include "io/mass_record.hpp"
+
+namespace rigflex::report {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+Json array(const Eigen::VectorXd& v) {
+  Json a = Json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.push_back(finite_or_null(v(i)));
+  return a;
+}
+
+Json array(const std::vector<double>& v) {
+  Json a = Json::array();
+  for (double x : v) a.push_back(finite_or_null(x));
+  return a;
+}
+
+Json per_channel(const std::vector<std::string>& names, const Eigen::VectorXd& v) {
+  Json o = Json::object();
+  for (size_t i = 0; i < names.size(); ++i) o[names[i]] = finite_or_null(v(static_cast<Eigen::Index>(i)));
+  return o;
+}
+
+Json state_json(const diagnose::SwingState& s) {
+  return Json{{"x_m", s(0)}, {"y_m", s(1)}, {"yaw_rad", s(2)},
+              {"vx_m_s", s(3)}, {"vy_m_s", s(4)}, {"yaw_rate_rad_s", s(5)}};
+}
+
+Json identified_json(const diagnose::ModelComparison& c, const CompareContext& x) {
+  Json j;
+  j["algorithm"] = identify::to_string(c.algorithm);
+  if (!c.identified) {
+    j["error"] = c.identification_error;
+    return j;
+  }
+  const identify::IdentificationResult& r = *c.identified;
+  io::MassRecordStd sd;
+  sd.mass = 0;
+  for (int k = 0; k < 3; ++k) sd.cog[static_cast<size_t>(k)] = r.standard_deviation[static_cast<size_t>(k)];
+  for (int k = 0; k < 6; ++k) sd.inertia[static_cast<size_t>(k)] = r.standard_deviation[static_cast<size_t>(3 + k)];
+  j["properties"] = io::mass_record_json(r.properties, sd);
+  if (x.reference) {
+    j["reference"] = io::mass_record_json(*x.reference);
+    const Eigen::Vector3d d = r.properties.cog - x.reference->cog;
+    j["cog_difference_m"] = {d.x(), d.y(), d.z()};
+  }
+  return j;
+}
+
+}  // namespace
+
+Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
+  Json j;
+  j["rig"] = x.rig;
+  j["model"] = x.model_label;
+  j["model_effects"] = x.model_effects;
+  j["channels"] = c.channels;
+  j["overall_nrmse"] = finite_or_null(c.overall_nrmse);
+  j["force_nrmse"] = finite_or_null(c.force_nrmse);
+  j["angle_nrmse"] = finite_or_null(c.angle_nrmse);
+  j["nrmse"] = per_channel(c.channels, c.nrmse);
+  j["raw"] = {{"overall_nrmse", finite_or_null(c.raw_overall_nrmse)}, {"force_nrmse", finite_or_null(c.raw_force_nrmse)},
+              {"nrmse", per_channel(c.channels, c.raw_nrmse)}};
+  j["swing_band"] = {{"cutoff_hz", c.histories.front().target.band.cutoff_hz},
+                     {"kernel_s", static_cast<double>(c.histories.front().target.band.kernel.size()) *
+                                      c.histories.front().target.band.step_s}};
+  j["warnings"] = c.warnings;
+  Json hs = Json::array();
+  for (const auto& h : c.histories) {
+    Json o;
+    o["source"] = h.source;
+    o["samples"] = h.t().size();
+    o["sample_interval_s"] = h.target.record.step_s;
+    o["nrmse"] = per_channel(c.channels, h.nrmse);
+    const Eigen::Index n = h.nrmse.size() / 3;
+    o["overall_nrmse"] = finite_or_null(diagnose::rms_of(h.nrmse, 0, h.nrmse.size()));
+    o["force_nrmse"] = finite_or_null(diagnose::rms_of(h.nrmse, 0, n));
+    o["raw_nrmse"] = per_channel(c.channels, h.raw_nrmse);
+    o["fit_window_nrmse"] = finite_or_null(h.fit_window_nrmse);
+    Json el = Json::array();
+    for (Eigen::Index k = 0; k < h.elastic.amplitude.size(); ++k) {
+      el.push_back({{"amplitude", finite_or_null(h.elastic.amplitude(k))}, {"rate", finite_or_null(h.elastic.rate(k))}});
+    }
+    o["elastic_state"] = el;
+    o["swing_state"] = state_json(h.fit.state);
+    o["fit"] = {{"iterations", h.fit.iterations}, {"converged", h.fit.converged},
+                {"band_residual_to_noise", finite_or_null(h.fit.whitened_rms)}};
+    o["noise"] = per_channel(c.channels, h.target.sigma);
+    hs.push_back(o);
+  }
+  j["histories"] = hs;
+
+  const diagnose::ResidualAnalysis& a = c.analysis;
+  Json w;
+  w["noise"] = per_channel(c.channels, a.noise);
+  w["residual_to_noise"] = per_channel(c.channels, a.noise_ratio);
+  w["channel_share"] = per_channel(c.channels, a.channel_share);
+  w["static_offset"] = per_channel(c.channels, a.static_offset);
+  w["static_offset_in_noise"] = per_channel(c.channels, a.offset_in_noise);
+  w["lag1_autocorrelation"] = per_channel(c.channels, a.lag1);
+  w["trend"] = {{"t_s", array(a.trend_t)}, {"overall_nrmse", array(a.trend_nrmse)},
+                {"slope_per_s", finite_or_null(a.trend_slope)}};
+  Json windows = Json::array();
+  for (const auto& x2 : a.windows) {
+    windows.push_back({{"history", x2.history + 1}, {"t_start_s", x2.t_start}, {"t_end_s", x2.t_end},
+                       {"share", finite_or_null(x2.share)}});
+  }
+  w["windows"] = windows;
+  Json decay = Json::array();
+  for (const auto& d : a.decay) {
+    decay.push_back({{"history", d.history + 1}, {"measured_rate_per_s", finite_or_null(d.measured_rate)},
+                     {"model_rate_per_s", finite_or_null(d.model_rate)}});
+  }
+  w["decay"] = decay;
+  w["extra_decay_rate_per_s"] = finite_or_null(a.extra_decay_rate);
+  Json corr = Json::object();
+  for (const auto& s : a.correlations) {
+    corr[s.state] = {{"largest", finite_or_null(s.largest)}, {"channel", s.channel}, {"per_channel", per_channel(c.channels, s.per_channel)}};
+  }
+  w["state_correlation"] = corr;
+  Json modes = Json::array();
+  for (size_t k = 0; k < a.mode_frequencies_hz.size(); ++k) {
+    modes.push_back({{"frequency_hz", finite_or_null(a.mode_frequencies_hz[k])}, {"kind", a.mode_kinds[k]}});
+  }
+  w["model_modes"] = modes;
+  Json peaks = Json::array();
+  for (const auto& p : a.spectra.peaks) {
+    peaks.push_back({{"group", p.group}, {"frequency_hz", finite_or_null(p.frequency_hz)}, {"amplitude", finite_or_null(p.amplitude)},
+                     {"nearest_mode_hz", finite_or_null(p.nearest_mode_hz)}});
+  }
+  w["spectrum_peaks"] = peaks;
+  {
+    // Up to 50 Hz: the swing band and the first frame modes of real rigs.
+    const diagnose::ResidualSpectra& sp = a.spectra;
+    Eigen::Index bins = 0;
+    while (bins < sp.frequency_hz.size() && sp.frequency_hz(bins) <= 50.0) ++bins;
+    w["spectra"] = {{"frequency_hz", array(sp.frequency_hz.head(bins))},
+                    {"residual_force", array(sp.residual_force.head(bins))},
+                    {"residual_angle", array(sp.residual_angle.head(bins))},
+                    {"measured_force", array(sp.measured_force.head(bins))},
+                    {"measured_angle", array(sp.measured_angle.head(bins))}};
+  }
+  j["where_it_fails"] = w;
+  j["identified"] = identified_json(c, x);
+  return j;
+}
+
+Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
+  Json j;
+  j["rig"] = x.rig;
+  j["model"] = x.model_label;
+  j["model_effects"] = d.present;
+  j["missing_effect"] = d.missing_effect ? Json(*d.missing_effect) : Json(nullptr);
+  j["summary"] = d.summary;
+  j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)}, {"band_samples", d.samples},
+                   {"independent_share", finite_or_null(d.independence)}};
+  Json ranking = Json::array();
+  for (const auto& e : d.ranking) {
+    Json o;
+    o["effect"] = e.effect;
+    o["explained_fraction"] = finite_or_null(e.explained_fraction);
+    o["significant"] = e.significant;
+    o["plausible"] = e.plausible;
+    Json params = Json::object();
+    for (const auto& p : e.parameters) {
+      params[p.name] = {{"value", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
+                        {"plausible_range", {finite_or_null(p.low), finite_or_null(p.high)}}, {"plausible", p.plausible}};
+    }
+    o["parameters"] = params;
+    o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
+    o["f_statistic"] = finite_or_null(e.f_statistic);
+    o["p_value"] = finite_or_null(e.p_value);
+    o["refinements"] = e.refinements;
+    o["advice"] = e.advice;
+    o["rig_block"] = e.rig_block;
+    if (!e.note.empty()) o["note"] = e.note;
+    ranking.push_back(o);
+  }
+  j["ranking"] = ranking;
+  return j;
+}
+
+}  // namespace rigflex::report

@@ -1,0 +1,43 @@
+#pragma once
+// The results of `rigflex identify` over one or more measurement sets, as
+// DIR/identification.json and as a printed table: per set the spec's mass
+// properties record with the checks of the solve, over the sets mean,
+// standard deviation and confidence interval; against a reference the errors,
+// the share inside the rig's accuracy and normal-probability data of the CoG
+// height; rigid against flexible by Welch's t-test when both ran.
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fe/mass_properties.hpp"
+#include "identify/identification.hpp"
+#include "identify/mass_statistics.hpp"
+
+namespace rigflex::report {
+
+struct IdentificationReport {
+  std::string rig;
+  std::vector<std::string> set_names;
+  std::vector<std::vector<std::string>> set_files;
+  identify::IdentificationOptions options;
+  std::optional<fe::MassProperties> tare;       // subtracted from every set
+  std::optional<fe::MassProperties> reference;  // errors and accuracy against it
+  std::optional<double> static_cog_height;      // zG of the static procedure (m)
+  identify::AccuracyLimits limits;
+
+  struct Algorithm {
+    identify::IdentificationAlgorithm algorithm;
+    std::vector<identify::IdentificationResult> results;  // per set, of the system on the rods
+    std::vector<fe::MassProperties> records;         // per set, tare subtracted when given
+  };
+  std::vector<Algorithm> algorithms;
+
+  // Adds one algorithm's results (one per set, in set order).
+  void add(identify::IdentificationAlgorithm a, std::vector<identify::IdentificationResult> results);
+
+  nlohmann::ordered_json json() const;
+  std::string table() const;
+};
+
+}  // namespace rigflex::report

@@ -1,0 +1,45 @@
+#include "report/modes_json.hpp"
+
+#include "io/mass_record.hpp"
+
+namespace rigflex::report {
+
+nlohmann::json modes_json(const std::string& model_name, const reduction::ModalAnalysis& a) {
+  const auto& r = a.result;
+  const auto& s = a.summary;
+  nlohmann::json modes = nlohmann::json::array();
+  nlohmann::json freqs = nlohmann::json::array();
+  static const char* dirs[6] = {"TX", "TY", "TZ", "RX", "RY", "RZ"};
+  for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k) {
+    nlohmann::json frac = nlohmann::json::object();
+    for (int d = 0; d < 6; ++d) frac[dirs[d]] = s.effective_mass_fraction(k, d);
+    freqs.push_back(s.frequencies_hz(k));
+    modes.push_back({{"mode", k + 1},
+                     {"frequency_hz", s.frequencies_hz(k)},
+                     {"eigenvalue", r.eigenvalues(k)},
+                     {"modal_mass", s.modal_mass(k)},
+                     {"effective_mass_fraction", frac},
+                     {"residual", r.residuals(k)},
+                     {"backward_error", r.backward_errors(k)}});
+  }
+  return {{"model", model_name},
+          {"dofs", a.system.dofs.free_count()},
+          {"mass_properties", io::mass_properties_json(a.mass)},
+          {"solver",
+           {{"method", "shift-invert Lanczos, thick restart, full M-reorthogonalization (CHOLMOD)"},
+            {"converged", r.converged},
+            {"requested", r.requested},
+            {"converged_count", r.converged_count},
+            {"shift", r.shift},
+            {"block_size", r.block_size},
+            {"restarts", r.restarts},
+            {"operator_applications", r.operator_applications},
+            {"max_residual", r.residuals.size() ? r.residuals.maxCoeff() : 0.0},
+            {"max_backward_error", r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0},
+            {"orthogonality_error", r.orthogonality_error},
+            {"message", r.message}}},
+          {"frequencies_hz", freqs},
+          {"modes", modes}};
+}
+
+}  // namespace rigflex::report

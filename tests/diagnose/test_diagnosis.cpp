@@ -1,0 +1,126 @@
+// Diagnosis pieces (rig/diagnosis.hpp, rig/joint_compliance.hpp,
+// rig/effect_candidates.hpp) on small cases; the catalogue-wide runs are
+// in tests/acceptance/test_diagnosis_acceptance.cpp.
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include "diagnose/diagnosis.hpp"
+#include "diagnose/effect_candidates.hpp"
+#include "rig/effects.hpp"
+#include "rig/joint_compliance.hpp"
+#include "support/rig_cases.hpp"
+
+namespace {
+
+using namespace rigflex;
+
+rig::RigModel trifilar() { return test::noisy_trifilar(); }
+
+// The fixed frame's joint compliance matrix is what it says: K^-1 = C.
+TEST(JointCompliance, FixedFrameStiffnessInvertsTheCompliance) {
+  const rig::RigModel m = trifilar();
+  rig::FixedJointCompliance c;
+  c.joints = {rig::Vec3(1e-6, 2e-6, 3e-7), rig::Vec3(2e-6, 1e-6, 4e-7), rig::Vec3(1.5e-6, 1e-6, 5e-7)};
+  c.sway = Eigen::Vector2d(1e-6, 2e-6);
+  c.twist = 3e-6;
+  const rig::FixedFrameModel f = rig::joint_compliance_fixed_frame(m.geometry, 200.0, c);
+  const Eigen::MatrixXd C = f.K.inverse();
+  rig::Vec3 centroid = rig::Vec3::Zero();
+  for (const auto& r : m.geometry.rods) centroid += r.upper / 3;
+  // Unit x force on joint 2: its own compliance plus the sway's, the others move by the sway and the twist.
+  const rig::Vec3 t2 = rig::Vec3::UnitZ().cross(m.geometry.rods[1].upper - centroid);
+  EXPECT_NEAR(C(3, 3), 2e-6 + 1e-6 + 3e-6 * t2.x() * t2.x(), 1e-15);
+  const rig::Vec3 t1 = rig::Vec3::UnitZ().cross(m.geometry.rods[0].upper - centroid);
+  EXPECT_NEAR(C(0, 3), 1e-6 + 3e-6 * t1.x() * t2.x(), 1e-15);
+  EXPECT_NEAR(C(2, 2), 3e-7, 1e-15);
+  EXPECT_THROW(rig::joint_compliance_fixed_frame(m.geometry, 200.0, rig::FixedJointCompliance{}), std::invalid_argument);
+  c.joints[1].y() = -1e-6;
+  EXPECT_THROW(rig::joint_compliance_fixed_frame(m.geometry, 200.0, c), std::invalid_argument);
+}
+
+// The carrying frame's plate: a static load at the joints moves them by
+// T K^-1 T' f (T: plate motion -> joint displacement).
+TEST(JointCompliance, CarryingFramePlateDeflectsAsItsCompliance) {
+  const rig::RigModel m = trifilar();
+  rig::CarryingJointCompliance c;
+  c.translation = rig::Vec3(1e-6, 2e-6, 5e-7);
+  c.rocking = Eigen::Vector2d(4e-6, 3e-6);
+  const rig::CarryingFrameModel f = rig::joint_compliance_carrying_frame(m.geometry, 200.0, c);
+  // Static modal response eta = psi' f / omega2, joint displacement psi eta.
+  Eigen::VectorXd load = Eigen::VectorXd::Zero(9);
+  load(2) = 100.0;  // 100 N up at joint 1
+  const Eigen::VectorXd d = f.psi * (f.psi.transpose() * load).cwiseQuotient(f.omega2);
+  rig::Vec3 centroid = rig::Vec3::Zero();
+  for (const auto& r : m.geometry.rods) centroid += r.lower / 3;
+  const rig::Vec3 rho = m.geometry.rods[0].lower - centroid;
+  // Translation up by 100 c_z, rocking by the moment rho x F about x and y.
+  const rig::Vec3 moment = rho.cross(rig::Vec3(0, 0, 100.0));
+  const rig::Vec3 theta(c.rocking.x() * moment.x(), c.rocking.y() * moment.y(), 0.0);
+  const rig::Vec3 expected = rig::Vec3(0, 0, 100.0 * c.translation.z()) + theta.cross(rho);
+  EXPECT_NEAR(d(2), expected.z(), 1e-12);
+  EXPECT_NEAR(d(0), expected.x(), 1e-12);
+}
+
+// Every candidate builds its effect at its probe, and a zero vector is no
+// effect for the compliances (the rig without it).
+TEST(EffectCandidates, EveryEffectBuildsAtItsProbe) {
+  const rig::RigSystem sys(trifilar());
+  const auto cands = diagnose::effect_candidates(diagnose::candidate_context(sys, 0.5));
+  ASSERT_EQ(cands.size(), rig::effect_names().size());
+  for (size_t i = 0; i < cands.size(); ++i) {
+    const auto& c = cands[i];
+    EXPECT_EQ(c.effect, rig::effect_names()[i]);
+    Eigen::VectorXd probe(c.parameters.size());
+    for (size_t k = 0; k < c.parameters.size(); ++k) probe(static_cast<Eigen::Index>(k)) = c.parameters[k].probe;
+    const auto e = c.make(probe);
+    ASSERT_TRUE(e) << c.effect;
+    EXPECT_EQ(std::string(e->name()), c.effect);
+    EXPECT_NO_THROW(e->validate(3)) << c.effect;
+    EXPECT_FALSE(c.rig_block(probe).empty());
+  }
+  EXPECT_EQ(cands[0].make(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(cands[0].parameters.size()))), nullptr);
+  EXPECT_EQ(cands[2].make(Eigen::VectorXd::Zero(1)), nullptr);
+}
+
+// A hidden load-cell calibration on two short records: found, ranked above
+// a rod length error, its gains within 3 std of the truth.
+TEST(Diagnosis, FindsALoadCellCalibration) {
+  const rig::RigModel start = trifilar();
+  rig::RigModel truth = start;
+  truth.effects.push_back(std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.0},
+                                                              std::vector<double>{5.0, 0.0, -5.0}));
+  rig::MeasurementOptions mo;
+  mo.histories = 2;
+  mo.duration_s = 8.0;
+  mo.seed = 5;
+  const auto data = rig::simulate_measurement(rig::RigSystem(truth), mo).front();
+  diagnose::DiagnosisOptions o;
+  o.effects = {"load_cell_gain", "rod_length_error"};
+  const diagnose::Diagnosis d = diagnose::diagnose(start, {&data[0], &data[1]}, {"a", "b"}, o);
+  ASSERT_EQ(d.ranking.size(), 2u);
+  EXPECT_EQ(d.ranking[0].effect, "load_cell_gain");
+  ASSERT_TRUE(d.missing_effect);
+  EXPECT_EQ(*d.missing_effect, "load_cell_gain");
+  EXPECT_GT(d.ranking[0].explained_fraction, 0.99);
+  const double gains[] = {0.01, -0.01, 0.0};
+  for (int k = 0; k < 3; ++k) {
+    const auto& p = d.ranking[0].parameters[static_cast<size_t>(k)];
+    EXPECT_LE(std::abs(p.value - gains[k]), std::max(3 * p.std, 2e-4)) << p.name << " " << p.value << " +- " << p.std;
+  }
+}
+
+TEST(Diagnosis, OptionsAreChecked) {
+  diagnose::DiagnosisOptions o;
+  o.effects = {"gravity_waves"};
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.significance = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.compare.fit_window_s = -1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
+}
+
+}  // namespace

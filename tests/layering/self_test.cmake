@@ -1,0 +1,26 @@
+# check_layering.cmake must fail on an include that points up the pipeline
+# and name it: a tree with one such include is written to WORK_DIR and
+# checked.   cmake -DWORK_DIR=<dir> -P self_test.cmake
+file(REMOVE_RECURSE ${WORK_DIR})
+foreach(folder linalg fe reduction rig identify diagnose io report apps verification)
+  file(WRITE ${WORK_DIR}/${folder}/${folder}_part.hpp "#pragma once\n#include \"linalg/linalg_part.hpp\"\n")
+endforeach()
+file(WRITE ${WORK_DIR}/linalg/linalg_part.hpp "#pragma once\n")
+file(WRITE ${WORK_DIR}/rig/upward.cpp "// a rig file that needs identification\n#include \"identify/identify_part.hpp\"\n")
+file(WRITE ${WORK_DIR}/io/CMakeLists.txt "target_link_libraries(rigflex_io PUBLIC rigflex::report)\n")
+execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${WORK_DIR} -P ${CMAKE_CURRENT_LIST_DIR}/check_layering.cmake
+                RESULT_VARIABLE result ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(result EQUAL 0)
+  message(FATAL_ERROR "the layering check passed a tree in which rig/ includes identify/")
+endif()
+foreach(expected "rig/upward.cpp:2: rig/ includes identify/" "io/CMakeLists.txt: io links rigflex::report")
+  string(FIND "${err}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the layering check did not name '${expected}':\n${err}")
+  endif()
+endforeach()
+string(FIND "${err}" "fe/fe_part.hpp" at)
+if(NOT at EQUAL -1)
+  message(FATAL_ERROR "the layering check flagged a downward include:\n${err}")
+endif()
+message(STATUS "layering self-test: the upward include and link were named, the downward ones passed")

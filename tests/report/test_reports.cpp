@@ -1,0 +1,284 @@
+// The command reports (io/reports.hpp) from small synthetic results: the
+// plots each report promises, the key text, robustness to missing parts and
+// non-finite values, and errors only for data that contradict themselves.
+// (Rendering in a browser: tests/browser/make_compare_report.cpp.)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+
+#include "report/reports.hpp"
+#include "support/synthetic_reports.hpp"
+
+namespace rigflex {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+using namespace test;  // the synthetic inputs
+
+// ---------------------------------------------------------------- reading the reports
+
+bool has(const report::HtmlReport& r, const std::string& text) { return r.html().find(text) != std::string::npos; }
+
+nlohmann::json plot_data(const report::HtmlReport& r) {
+  const std::string html = r.html();
+  const std::string open = "<script type=\"application/json\" id=\"report-data\">";
+  const auto begin = html.find(open);
+  EXPECT_NE(begin, std::string::npos);
+  const auto end = html.find("</script>", begin);
+  return nlohmann::json::parse(html.substr(begin + open.size(), end - begin - open.size()));
+}
+
+// ---------------------------------------------------------------- compare
+
+TEST(CompareReport, HasEveryPlotAndSection) {
+  const report::HtmlReport r = report::compare_report(comparison(), context(), study());
+  // measured/model forces + angles, residual forces + angles, 2 spectra, trend, decay, study
+  EXPECT_EQ(r.plot_count(), 9);
+  for (const char* s : {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces",
+                        "swing 0.54, 0.56 Hz", "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history",
+                        "v1 rig.yaml", "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck",
+                        "Warning: h2.csv: the model does not follow", "identified − reference", "zG (mm)", "3.50"})
+    EXPECT_TRUE(has(r, s)) << s;
+  const nlohmann::json data = plot_data(r);
+  ASSERT_EQ(data.size(), 9u);
+  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);     // forces measured and model
+  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);     // alpha and beta measured and model
+  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);     // angle residuals
+  EXPECT_EQ(data[4]["markers"].size(), 4u);            // the model's modes
+  EXPECT_EQ(data[8]["categories"][0], "v1 rig.yaml");
+}
+
+TEST(CompareReport, EmptyStudyAndMissingIdentification) {
+  diagnose::ModelComparison c = comparison();
+  c.identified.reset();
+  c.identification_error = "CoG height not observable";
+  report::CompareContext x = context();
+  x.reference.reset();
+  const report::HtmlReport r = report::compare_report(c, x, {});
+  EXPECT_EQ(r.plot_count(), 8);
+  EXPECT_FALSE(has(r, "Error by model version"));
+  EXPECT_TRUE(has(r, "Not identified (flexible algorithm): CoG height not observable"));
+}
+
+TEST(CompareReport, NonFiniteValuesAreGapsAndDashes) {
+  diagnose::ModelComparison c = comparison();
+  c.overall_nrmse = nan;
+  c.nrmse(2) = nan;
+  c.histories[0].target.record.channels(10, 0) = nan;
+  c.histories[0].model(11, 4) = std::numeric_limits<double>::infinity();
+  c.analysis.spectra.residual_force(3) = nan;
+  c.analysis.decay[1].measured_rate = nan;
+  c.analysis.trend_nrmse[2] = nan;
+  c.analysis.mode_frequencies_hz[0] = nan;
+  c.identified->properties.cog.z() = nan;
+  std::vector<report::StudyEntry> s = study();
+  s[0].overall_nrmse = nan;
+  report::HtmlReport r("");
+  ASSERT_NO_THROW(r = report::compare_report(c, context(), s));
+  EXPECT_EQ(r.plot_count(), 9);
+  EXPECT_TRUE(has(r, "<td>–</td>"));
+}
+
+TEST(CompareReport, EmptyComparisonGivesAReportWithoutPlots) {
+  report::HtmlReport r("");
+  ASSERT_NO_THROW(r = report::compare_report(diagnose::ModelComparison{}, report::CompareContext{}, {}));
+  EXPECT_EQ(r.plot_count(), 0);
+  EXPECT_TRUE(has(r, "Not identified."));
+}
+
+TEST(CompareReport, ContradictoryDataThrowNamingIt) {
+  diagnose::ModelComparison c = comparison();
+  c.histories[1].model.conservativeResize(Eigen::NoChange, 3 * kRods - 1);
+  EXPECT_THROW(
+      {
+        try {
+          report::compare_report(c, context(), {});
+        } catch (const std::invalid_argument& e) {
+          EXPECT_NE(std::string(e.what()).find("history 2"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      std::invalid_argument);
+  c = comparison();
+  c.analysis.spectra.measured_angle.resize(5);
+  EXPECT_THROW(report::compare_report(c, context(), {}), std::invalid_argument);
+  c = comparison();
+  c.channels.pop_back();
+  EXPECT_THROW(report::compare_report(c, context(), {}), std::invalid_argument);
+}
+
+TEST(CompareReport, EscapesSources) {
+  diagnose::ModelComparison c = comparison();
+  c.histories[0].source = "<script>alert(1)</script>.csv";
+  const std::string h = report::compare_report(c, context(), {}).html();
+  EXPECT_EQ(h.find("<script>alert(1)"), std::string::npos);
+  EXPECT_NE(h.find("&lt;script&gt;alert(1)"), std::string::npos);
+}
+
+// ---------------------------------------------------------------- diagnosis
+
+TEST(DiagnosisReport, RanksEffectsAndAdvisesOnTheMissingOne) {
+  const diagnose::Diagnosis d = diagnosis(true);
+  const report::HtmlReport r = report::diagnosis_report(d, context());
+  EXPECT_EQ(r.plot_count(), 3);  // ranking, baseline residual forces and angles
+  for (const char* s : {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance",
+                        "12.5 ± 0.4", "N s/m", "add air_drag to the rig file", "air_drag: {coefficient: 12.5}",
+                        "Missing effect: air_drag", "4.2 × the noise"})
+    EXPECT_TRUE(has(r, s)) << s;
+  EXPECT_FALSE(has(r, "joint_friction *"));
+  const nlohmann::json data = plot_data(r);
+  ASSERT_EQ(data[0]["categories"].size(), 3u);
+  EXPECT_EQ(data[0]["categories"][0], "air_drag *");
+  EXPECT_DOUBLE_EQ(data[0]["series"][0]["y"][1].get<double>(), 20.0);
+}
+
+TEST(DiagnosisReport, KeepsTheIndentationOfTheRigBlock) {
+  diagnose::Diagnosis d = diagnosis(true);
+  d.ranking[0].rig_block = "fixed_frame_flexibility:\n  joint_compliance:\n    twist: 1e-07\n";
+  const report::HtmlReport r = report::diagnosis_report(d, context());
+  EXPECT_TRUE(has(r, "fixed_frame_flexibility:\n\u00a0\u00a0joint_compliance:\n\u00a0\u00a0\u00a0\u00a0twist: 1e-07"));
+  EXPECT_TRUE(has(r, "effects/air_drag.yaml"));
+}
+
+TEST(DiagnosisReport, WithTheBaselineAnalysisAddsSpectraTrendAndDecay) {
+  const diagnose::Diagnosis d = diagnosis(true);
+  const diagnose::ResidualAnalysis a = analysis(diagnose::channel_names(kRods));
+  const report::HtmlReport r = report::diagnosis_report(d, context(), &a);
+  EXPECT_EQ(r.plot_count(), 7);
+  EXPECT_TRUE(has(r, "Residual spectrum, angles"));
+}
+
+TEST(DiagnosisReport, NoSignificantEffect) {
+  diagnose::Diagnosis d = diagnosis(false);
+  report::HtmlReport r = report::diagnosis_report(d, context());
+  EXPECT_TRUE(has(r, "no significant missing effect"));
+  EXPECT_FALSE(has(r, "air_drag *"));
+  EXPECT_FALSE(has(r, "Missing effect:"));
+  d.summary.clear();
+  d.ranking.clear();
+  d.baseline.clear();
+  ASSERT_NO_THROW(r = report::diagnosis_report(d, report::CompareContext{}));
+  EXPECT_EQ(r.plot_count(), 0);
+  EXPECT_TRUE(has(r, "no significant missing effect"));
+}
+
+TEST(DiagnosisReport, NonFiniteValuesDoNotThrow) {
+  diagnose::Diagnosis d = diagnosis(true);
+  d.ranking[1].explained_fraction = nan;
+  d.ranking[0].parameters[0].std = nan;
+  d.noise_ratio = nan;
+  d.baseline[0].target.record.channels(0, 0) = nan;
+  report::HtmlReport r("");
+  ASSERT_NO_THROW(r = report::diagnosis_report(d, context()));
+  EXPECT_EQ(r.plot_count(), 3);
+}
+
+// ---------------------------------------------------------------- identification
+
+TEST(IdentificationHtml, TablesAndNormalProbabilityAgainstTheReference) {
+  const report::IdentificationReport rep = identification(true);
+  const report::HtmlReport r = report::identification_html(rep);
+  EXPECT_EQ(r.plot_count(), 2);  // one per algorithm
+  for (const char* s : {"rigid mean ± std", "flexible − reference", "zG − reference zG (mm)", "Welch t",
+                        "inside the rig", "s3", "normal line", "flexible algorithm: CoG height",
+                        "<td>861.45 ± 1.37</td>", "<td>4200.0</td>"})
+    EXPECT_TRUE(has(r, s)) << s;
+  {  // no floating-point dust (4200 ± 1e-13) in the mass properties table
+    const std::string h = r.html();
+    const auto from = h.find("<h2>Mass properties"), to = h.find("<h2>CoG height");
+    ASSERT_LT(from, to);
+    EXPECT_EQ(h.substr(from, to - from).find("e-"), std::string::npos);
+  }
+  // The plotted differences are identification.json's normal_probability (in mm).
+  const nlohmann::json data = plot_data(r);
+  const auto json = rep.json();
+  const auto& pts = json["normal_probability"]["points"];  // the primary (last: flexible) algorithm
+  const auto& series = data[1]["series"];
+  ASSERT_EQ(series.size(), 2u);  // sets, normal line
+  ASSERT_EQ(series[0]["x"].size(), pts.size());
+  for (size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_NEAR(series[0]["x"][i].get<double>(), 1e3 * pts[i]["value"].get<double>(), 1e-4);
+    EXPECT_NEAR(series[0]["y"][i].get<double>(), pts[i]["quantile"].get<double>(), 1e-6);
+  }
+}
+
+TEST(IdentificationHtml, StaticHeightWithTareMatchesTheJson) {
+  report::IdentificationReport rep;
+  rep.set_names = {"a", "b", "c"};
+  rep.set_files.resize(3);
+  fe::MassProperties tare;
+  tare.mass = 400;
+  tare.cog = Eigen::Vector3d(0, 0, 0.3);
+  rep.tare = tare;
+  rep.static_cog_height = 0.75;
+  rep.add(identify::IdentificationAlgorithm::rigid, {identified(0.74), identified(0.752), identified(0.749)});
+  const nlohmann::json data = plot_data(report::identification_html(rep));
+  const auto pts = rep.json()["normal_probability"]["points"];
+  ASSERT_EQ(data[0]["series"][0]["x"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(data[0]["series"][0]["x"][i].get<double>(), 1e3 * pts[i]["value"].get<double>(), 1e-4);
+  EXPECT_NE(data[0]["x_label"].get<std::string>().find("static zG"), std::string::npos);
+}
+
+TEST(IdentificationHtml, WithoutReferenceDifferencesFromTheMean) {
+  report::IdentificationReport rep = identification(false);
+  rep.algorithms[0].records[2].cog.z() = nan;  // one set without a height: left out
+  report::HtmlReport r("");
+  ASSERT_NO_THROW(r = report::identification_html(rep));
+  EXPECT_EQ(r.plot_count(), 2);
+  EXPECT_TRUE(has(r, "zG − mean zG (mm)"));
+  EXPECT_TRUE(has(r, "Not tested (non-finite"));
+  const nlohmann::json data = plot_data(r);
+  EXPECT_EQ(data[0]["series"][0]["x"].size(), 4u);
+  double sum = 0;
+  for (const auto& x : data[1]["series"][0]["x"]) sum += x.get<double>();
+  EXPECT_NEAR(sum, 0.0, 1e-3);  // flexible: about its own mean
+}
+
+TEST(IdentificationHtml, ImposedCogHasNothingToPlot) {
+  report::IdentificationReport rep = identification(true);
+  rep.options.cog_constraint = identify::CogConstraint::full;
+  const report::HtmlReport r = report::identification_html(rep);
+  EXPECT_EQ(r.plot_count(), 0);
+  EXPECT_TRUE(has(r, "no scatter to plot"));
+}
+
+TEST(IdentificationHtml, MismatchedResultsThrow) {
+  report::IdentificationReport rep = identification(true);
+  rep.algorithms[1].records.pop_back();
+  EXPECT_THROW(report::identification_html(rep), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------- sweep
+
+TEST(SweepHtml, ErrorCurvesAgainstF1) {
+  const report::HtmlReport r = report::sweep_html("light-truck", sweep_points());
+  EXPECT_EQ(r.plot_count(), 2);
+  for (const char* s : {"rigid, mass sweep", "flexible, stiffness sweep", "no static equilibrium",
+                        "rigid: not observable", "3 × highest swing 1.8 Hz"})
+    EXPECT_TRUE(has(r, s)) << s;
+  const nlohmann::json data = plot_data(r);
+  EXPECT_TRUE(data[0]["log_x"].get<bool>());
+  ASSERT_EQ(data[0]["series"].size(), 4u);
+  const auto& x = data[0]["series"][0]["x"];  // rigid, mass sweep: by f1
+  for (size_t i = 1; i < x.size(); ++i) EXPECT_LT(x[i - 1].get<double>(), x[i].get<double>());
+}
+
+TEST(SweepHtml, NoPointsOrNoF1) {
+  report::HtmlReport r("");
+  ASSERT_NO_THROW(r = report::sweep_html("", {}));
+  EXPECT_EQ(r.plot_count(), 0);
+  std::vector<identify::SweepPoint> pts(2);
+  pts[0].failure = "nothing deforms";
+  ASSERT_NO_THROW(r = report::sweep_html("x", pts));
+  EXPECT_EQ(r.plot_count(), 0);
+  EXPECT_TRUE(has(r, "no error curve"));
+}
+
+}  // namespace
+}  // namespace rigflex

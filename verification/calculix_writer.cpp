@@ -1,0 +1,880 @@
+#include "verification/calculix_writer.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
+
+#include "fe/beam_element.hpp"
+#include "io/atomic_file.hpp"
+
+extern char** environ;
+
+namespace rigflex::verification {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Text of a double for ccx, which reads at most 20 characters per field
+// and tells reals from integers by the decimal point (a *SPRING line "20000"
+// is read as a DOF number): the shortest round-trip form if it fits, else
+// fewer significant digits, always with a '.'.
+std::string num(double v) {
+  std::array<char, 32> buf{};
+  auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+  std::string s(buf.data(), r.ptr);
+  for (int digits = 16; s.size() > 19 && digits > 6; --digits) {
+    std::snprintf(buf.data(), buf.size(), "%.*g", digits, v);
+    s = buf.data();
+  }
+  if (s.find('.') == std::string::npos) {
+    const auto e = s.find('e');
+    s.insert(e == std::string::npos ? s.size() : e, ".");
+  }
+  return s;
+}
+
+std::string vec_text(const fe::Vec3& v) { return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()); }
+
+[[noreturn]] void unsupported(const std::string& what) {
+  throw std::invalid_argument("CalculiX export: " + what);
+}
+
+class InputWriter {
+ public:
+  InputWriter(const fe::Model& m, const CalculixOptions& opt) : m_(m), opt_(opt) {}
+
+  std::string write() {
+    m_.validate();
+    opt_.validate();
+    number_nodes();
+    mark_element_nodes();
+    check_unsupported();
+
+    out_.reserve(m_.nodes.size() * 80 + m_.shells.size() * 60 + 4096);
+    out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (io/calculix_writer.cpp).\n";
+    out_ += "** Beams are B32R, MITC4 shells S4, 8-node shells S8R; ccx expands them into\n";
+    out_ += "** C3D20R / C3D8I solids internally.\n";
+    if (!opt_.heading.empty()) out_ += "*HEADING\n" + opt_.heading + "\n";
+    write_nodes();
+    write_beams();
+    write_shells();
+    write_anchors();
+    write_materials();
+    write_point_masses();
+    write_springs();
+    write_couplings();
+    write_boundaries();
+    if (opt_.matrix_storage) {
+      // ccx stores K and M where it would factorize them and stops there:
+      // no eigenvalues, no results, so no *NODE FILE.
+      out_ += "*STEP\n*FREQUENCY, SOLVER=MATRIXSTORAGE\n" + std::to_string(opt_.modes) + "\n*END STEP\n";
+    } else {
+      out_ += "*STEP\n*FREQUENCY\n" + std::to_string(opt_.modes) + "\n";
+      if (opt_.write_node_file) out_ += "*NODE FILE\nU\n";
+      out_ += "*END STEP\n";
+    }
+    return std::move(out_);
+  }
+
+  // After write(): the ccx number of every model node, and the first number
+  // after the writer's own nodes (ccx numbers the nodes it generates from
+  // there on).
+  const std::unordered_map<fe::NodeId, long>& ccx_ids() const { return ccx_id_; }
+  long first_free_node() const { return next_node_; }
+
+ private:
+  // ---- numbering -------------------------------------------------------
+  void number_nodes() {
+    // rigflex ids are kept when they are valid ccx node numbers; generated
+    // nodes (beam mid nodes, rotation nodes, spring anchors) follow the
+    // largest id.
+    bool keep = true;
+    for (const fe::Node& n : m_.nodes) keep = keep && n.id >= 1 && n.id < 100000000;
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+      ccx_id_[m_.nodes[i].id] = keep ? m_.nodes[i].id : static_cast<long>(i + 1);
+    next_node_ = 1;
+    for (const auto& [id, c] : ccx_id_) next_node_ = std::max(next_node_, c + 1);
+  }
+  long id(fe::NodeId n) const { return ccx_id_.at(n); }
+  long new_node(const fe::Vec3& x) {
+    extra_nodes_.push_back({next_node_, x});
+    return next_node_++;
+  }
+
+  void mark_element_nodes() {
+    for (size_t i = 0; i < m_.beams.size(); ++i)
+      for (fe::NodeId n : m_.beams[i].nodes) {
+        element_node_.insert(n);
+        first_beam_.emplace(n, i);
+      }
+    for (size_t i = 0; i < m_.shells.size(); ++i)
+      for (fe::NodeId n : m_.shells[i].nodes) {
+        element_node_.insert(n);
+        first_shell_.emplace(n, i);
+      }
+  }
+  bool in_elements(fe::NodeId n) const { return element_node_.count(n) != 0; }
+
+  void check_unsupported() {
+    std::set<std::string> used;
+    for (const auto& b : m_.beams) used.insert(b.section);
+    for (const std::string& name : used) {
+      const fe::BeamSection& sec = m_.beam_sections.at(name);
+      if (sec.shape == fe::SectionShape::ISection)
+        unsupported("beam section '" + name +
+                    "' is an I-section; ccx 2.20 *BEAM SECTION supports RECT, CIRC, PIPE and BOX only");
+      if (sec.shape == fe::SectionShape::General)
+        unsupported("beam section '" + name +
+                    "' is a general section (A, Iy, Iz, J); ccx 2.20 offers SECTION=GENERAL only for the "
+                    "U1 user element, not for B32R");
+    }
+    for (const auto& p : m_.point_masses)
+      for (double j : p.inertia)
+        if (j != 0.0)
+          unsupported("point mass '" + p.id +
+                      "' has rotary inertia; ccx 2.20 MASS elements carry translational mass only");
+    for (const auto& s : m_.springs)
+      for (int d = 3; d < 6; ++d)
+        if (s.stiffness[static_cast<size_t>(d)] != 0.0)
+          unsupported("spring '" + s.id + "' has a rotational stiffness; only translational springs are exported");
+    for (const auto& c : m_.couplings)
+      for (bool b : c.dofs)
+        if (!b)
+          unsupported("rigid coupling '" + c.id +
+                      "' couples only some DOFs; only couplings of all six DOFs are exported");
+  }
+
+  // ---- nodes -----------------------------------------------------------
+  void write_nodes() {
+    // Mid nodes of the B32R elements first, so that every generated node
+    // exists before the *NODE block is written.
+    for (const auto& b : m_.beams)
+      beam_mid_.push_back(new_node(0.5 * (m_.position(b.nodes[0]) + m_.position(b.nodes[1]))));
+    for (const auto& c : m_.couplings) rot_node_.push_back(new_node(m_.position(c.reference)));
+    make_knot_anchors();
+    for (const auto& s : m_.springs)
+      if (s.axial && *s.axial != 0.0 && !s.other) anchor_.push_back(new_node(m_.position(s.node) + s.direction->normalized()));
+      else anchor_.push_back(0);
+
+    out_ += "*NODE, NSET=NALL\n";
+    for (const fe::Node& n : m_.nodes) out_ += std::to_string(id(n.id)) + ", " + vec_text(n.x) + "\n";
+    for (const auto& [k, x] : extra_nodes_) out_ += std::to_string(k) + ", " + vec_text(x) + "\n";
+  }
+
+  // ---- materials ------------------------------------------------------------
+  // Model materials as given, and massless copies (zero density) for
+  // elements with MassKind::None and for the knot anchors.
+  enum class Variant { plain, massless };
+  std::string material_name(const std::string& material, Variant v) {
+    const auto key = std::make_pair(material, v == Variant::massless);
+    auto it = material_names_.find(key);
+    if (it != material_names_.end()) return it->second;
+    const std::string name = "M" + std::to_string(material_names_.size() + 1);
+    material_names_[key] = name;
+    return name;
+  }
+  void write_materials() {
+    for (const auto& [key, name] : material_names_) {
+      const fe::Material& mat = m_.materials.at(key.first);
+      out_ += "** material '" + key.first + "'" + (key.second ? " (massless copy)" : "") + "\n";
+      out_ += "*MATERIAL, NAME=" + name + "\n*ELASTIC\n" + num(mat.E) + ", " + num(mat.nu) + "\n";
+      out_ += "*DENSITY\n" + num(key.second ? 0.0 : mat.rho) + "\n";
+    }
+  }
+
+  // ---- knot anchors -----------------------------------------------------
+  // ccx gives a beam or shell node rotational DOFs only where it builds a
+  // "knot" (a rigid body of all expanded nodes at the node, with a rotation
+  // node); it does so where elements with different tangents or normals
+  // meet, not where an *EQUATION or *RIGID BODY refers to the node's
+  // rotations: such terms are silently without effect, and a coupling to a
+  // node in the middle of a straight member leaves the rotation free (found
+  // by running ccx 2.20: the coupled masses came out as zero-frequency
+  // modes). So every beam or shell node whose rotations enter a coupling
+  // equation gets a short anchor beam at right angles to its element, which
+  // makes ccx build a knot there. The anchor is massless and free at its far
+  // end: it follows the knot rigidly and stores no energy, so it changes
+  // neither stiffness nor mass (a clamped anchor would act as a spring of
+  // stiffness E A / L). It has the element's material (no extreme
+  // stiffness ratios) and a square section a tenth of its length.
+  struct Anchor {
+    long mid = 0, far = 0;  // far end: free
+    fe::NodeId node = 0;
+    fe::Vec3 n1;
+    double length = 0;
+    std::string material;
+  };
+
+  void make_knot_anchors() {
+    std::set<fe::NodeId> nodes;
+    for (const auto& c : m_.couplings) {
+      for (fe::NodeId d : c.dependents)
+        if (in_elements(d)) nodes.insert(d);
+      if (in_elements(c.reference)) nodes.insert(c.reference);
+    }
+    for (fe::NodeId n : nodes) {
+      Anchor a;
+      a.node = n;
+      fe::Vec3 dir;
+      if (auto b = first_beam_.find(n); b != first_beam_.end()) {
+        const fe::BeamElement& e = m_.beams[b->second];
+        const Eigen::Matrix3d R = fe::beam_local_axes(m_.position(e.nodes[0]), m_.position(e.nodes[1]), e.orientation);
+        dir = R.row(1).transpose();
+        a.n1 = R.row(0).transpose();
+        const fe::BeamSection& sec = m_.beam_sections.at(e.section);
+        a.length = std::max({sec.width, sec.height, sec.diameter, std::sqrt(std::max(sec.A, 0.0))});
+        a.material = sec.material;
+      } else {
+        const fe::ShellElement& e = m_.shells[first_shell_.at(n)];
+        const fe::Vec3 x0 = m_.position(e.nodes[0]), x1 = m_.position(e.nodes[1]), x2 = m_.position(e.nodes[2]),
+                       x3 = m_.position(e.nodes[3]);
+        dir = (x2 - x0).cross(x3 - x1).normalized();
+        const fe::Vec3 edge = x1 - x0;
+        a.n1 = (edge - edge.dot(dir) * dir).normalized();
+        const fe::ShellSection& sec = m_.shell_sections.at(e.section);
+        a.length = 2.0 * sec.thickness;
+        a.material = sec.material;
+      }
+      const fe::Vec3 x = m_.position(n);
+      a.mid = new_node(x + 0.5 * a.length * dir);
+      a.far = new_node(x + a.length * dir);
+      anchors_.push_back(a);
+    }
+  }
+
+  void write_anchors() {
+    int k = 0;
+    for (const Anchor& a : anchors_) {
+      const std::string elset = "EA" + std::to_string(++k);
+      out_ += "** knot anchor of node " + std::to_string(id(a.node)) + "\n*ELEMENT, TYPE=B32R, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(id(a.node)) + ", " + std::to_string(a.mid) + ", " +
+              std::to_string(a.far) + "\n";
+      out_ += "*BEAM SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(a.material, Variant::massless) +
+              ", SECTION=RECT\n" + num(0.1 * a.length) + ", " + num(0.1 * a.length) + "\n" + vec_text(a.n1) + "\n";
+    }
+  }
+
+  // ---- beams -------------------------------------------------------------
+  void write_beams() {
+    // One element set per (section, mass kind, 1-direction).
+    struct Group {
+      std::string section;
+      bool massless = false;
+      fe::Vec3 n1;
+      std::vector<size_t> beams;
+    };
+    std::map<std::string, Group> groups;
+    for (size_t i = 0; i < m_.beams.size(); ++i) {
+      const fe::BeamElement& b = m_.beams[i];
+      const Eigen::Matrix3d R =
+          fe::beam_local_axes(m_.position(b.nodes[0]), m_.position(b.nodes[1]), b.orientation);
+      const fe::Vec3 n1 = R.row(1).transpose();  // ccx n1 = rigflex local y, so n2 = t x n1 = local z
+      const bool massless = b.mass == fe::MassKind::None;
+      const std::string key = b.section + "|" + (massless ? "0" : "1") + "|" + vec_text(n1);
+      Group& g = groups[key];
+      g.section = b.section;
+      g.massless = massless;
+      g.n1 = n1;
+      g.beams.push_back(i);
+    }
+    int k = 0;
+    for (const auto& [key, g] : groups) {
+      const std::string elset = "EB" + std::to_string(++k);
+      out_ += "** beam section '" + g.section + "'\n*ELEMENT, TYPE=B32R, ELSET=" + elset + "\n";
+      for (size_t i : g.beams) {
+        const fe::BeamElement& b = m_.beams[i];
+        out_ += std::to_string(++element_) + ", " + std::to_string(id(b.nodes[0])) + ", " +
+                std::to_string(beam_mid_[i]) + ", " + std::to_string(id(b.nodes[1])) + "\n";
+      }
+      const fe::BeamSection& s = m_.beam_sections.at(g.section);
+      const std::string mat = material_name(s.material, g.massless ? Variant::massless : Variant::plain);
+      std::string kind, dims;
+      switch (s.shape) {
+        case fe::SectionShape::Rectangle:
+          kind = "RECT";
+          dims = num(s.width) + ", " + num(s.height);
+          break;
+        case fe::SectionShape::Circle:
+          kind = "CIRC";
+          dims = num(s.diameter) + ", " + num(s.diameter);
+          break;
+        case fe::SectionShape::Tube:
+          kind = "PIPE";
+          dims = num(0.5 * s.diameter) + ", " + num(s.wall);
+          break;
+        case fe::SectionShape::Box: {
+          kind = "BOX";
+          const double tw = s.web_thickness > 0 ? s.web_thickness : s.wall;      // walls at +-y (n1)
+          const double tf = s.flange_thickness > 0 ? s.flange_thickness : s.wall;  // walls at +-z (n2)
+          dims = num(s.width) + ", " + num(s.height) + ", " + num(tw) + ", " + num(tf) + ", " + num(tw) + ", " +
+                 num(tf);
+          break;
+        }
+        default:
+          unsupported("beam section '" + g.section + "' has no ccx equivalent");
+      }
+      out_ += "*BEAM SECTION, ELSET=" + elset + ", MATERIAL=" + mat + ", SECTION=" + kind + "\n" + dims + "\n" +
+              vec_text(g.n1) + "\n";
+    }
+  }
+
+  // ---- shells ------------------------------------------------------------
+  void write_shells() {
+    struct Group {
+      std::string section;
+      bool massless = false, quad8 = false;
+      std::vector<size_t> shells;
+    };
+    std::map<std::tuple<std::string, bool, bool>, Group> groups;
+    for (size_t i = 0; i < m_.shells.size(); ++i) {
+      const fe::ShellElement& s = m_.shells[i];
+      const bool massless = s.mass == fe::MassKind::None;
+      const bool quad8 = s.formulation() == fe::ShellFormulation::Quad8;
+      Group& g = groups[{s.section, massless, quad8}];
+      g.section = s.section;
+      g.massless = massless;
+      g.quad8 = quad8;
+      g.shells.push_back(i);
+    }
+    int k = 0;
+    for (const auto& [key, g] : groups) {
+      const std::string elset = "ES" + std::to_string(++k);
+      out_ += "** shell section '" + g.section + "'\n*ELEMENT, TYPE=" + std::string(g.quad8 ? "S8R" : "S4") +
+              ", ELSET=" + elset + "\n";
+      for (size_t i : g.shells) {
+        out_ += std::to_string(++element_);
+        // rigflex's node order (corners counter-clockwise, then mid-sides
+        // 1-2, 2-3, 3-4, 4-1) is ccx's S4 / S8 order.
+        for (fe::NodeId n : m_.shells[i].nodes) out_ += ", " + std::to_string(id(n));
+        out_ += "\n";
+      }
+      const fe::ShellSection& s = m_.shell_sections.at(g.section);
+      out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless ? Variant::massless : Variant::plain) + "\n" +
+              num(s.thickness) + "\n";
+    }
+  }
+
+  // ---- point masses ---------------------------------------------------------
+  void write_point_masses() {
+    int k = 0;
+    for (const auto& p : m_.point_masses) {
+      if (p.mass == 0.0) continue;
+      const std::string elset = "EM" + std::to_string(++k);
+      out_ += "** point mass '" + p.id + "'\n*ELEMENT, TYPE=MASS, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(id(p.node)) + "\n";
+      out_ += "*MASS, ELSET=" + elset + "\n" + num(p.mass) + "\n";
+    }
+  }
+
+  // ---- springs ---------------------------------------------------------------
+  void write_springs() {
+    int k = 0;
+    for (size_t i = 0; i < m_.springs.size(); ++i) {
+      const fe::Spring& s = m_.springs[i];
+      for (int d = 0; d < 3; ++d) {
+        const double kd = s.stiffness[static_cast<size_t>(d)];
+        if (kd == 0.0) continue;
+        const std::string elset = "EK" + std::to_string(++k);
+        if (s.other) {
+          out_ += "** spring '" + s.id + "'\n*ELEMENT, TYPE=SPRING2, ELSET=" + elset + "\n" +
+                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + ", " +
+                  std::to_string(id(*s.other)) + "\n";
+          out_ += "*SPRING, ELSET=" + elset + "\n" + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n" +
+                  num(kd) + "\n";
+        } else {
+          out_ += "** spring '" + s.id + "'\n*ELEMENT, TYPE=SPRING1, ELSET=" + elset + "\n" +
+                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + "\n";
+          out_ += "*SPRING, ELSET=" + elset + "\n" + std::to_string(d + 1) + "\n" + num(kd) + "\n";
+        }
+      }
+      if (!s.axial || *s.axial == 0.0) continue;
+      long a = id(s.node), b = 0;
+      if (s.other) {
+        b = id(*s.other);
+        const fe::Vec3 line = m_.position(*s.other) - m_.position(s.node);
+        if (s.direction && line.norm() > 0 &&
+            line.normalized().cross(s.direction->normalized()).norm() > 1e-9)
+          unsupported("spring '" + s.id +
+                      "': an axial spring between two nodes along a direction other than the line between "
+                      "them has no ccx element (SPRINGA acts along the line)");
+        if (line.norm() == 0.0)
+          unsupported("spring '" + s.id + "': an axial spring between coincident nodes has no ccx element");
+      } else {
+        b = anchor_[i];  // clamped below
+        anchored_.push_back(b);
+      }
+      const std::string elset = "EK" + std::to_string(++k);
+      out_ += "** axial spring '" + s.id + "'\n*ELEMENT, TYPE=SPRINGA, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(a) + ", " + std::to_string(b) + "\n";
+      out_ += "*SPRING, ELSET=" + elset + "\n" + num(*s.axial) + "\n";
+    }
+  }
+
+  // ---- rigid couplings -------------------------------------------------------
+  // Linear multipoint constraints of a rigid link (RBE2), written as
+  // *EQUATION rather than *RIGID BODY: ccx's *RIGID BODY ties only the
+  // translations of beam and shell nodes and leaves the rotation about the
+  // line undefined when the nodes are collinear (one dependent), whereas
+  // rigflex's coupling also drives the dependents' rotations. For a
+  // reference r with rotation theta (the translations of a generated
+  // rotation node q, as in ccx's ROT NODE convention) and a dependent d:
+  //   u_d - u_r - theta x (x_d - x_r) = 0   (3 equations, u_d dependent)
+  //   theta_d - theta = 0                    (if d belongs to beams/shells)
+  //   theta_r - theta = 0                    (if r belongs to beams/shells)
+  // The rotational terms of beam and shell nodes act through the knots that
+  // the anchors (make_knot_anchors) create there.
+  void write_couplings() {
+    for (size_t i = 0; i < m_.couplings.size(); ++i) {
+      const fe::RigidCoupling& c = m_.couplings[i];
+      const long q = rot_node_[i], r = id(c.reference);
+      const fe::Vec3 xr = m_.position(c.reference);
+      out_ += "** rigid coupling '" + c.id + "': reference " + std::to_string(r) + ", rotation node " +
+              std::to_string(q) + "\n*EQUATION\n";
+      auto term = [](long node, int dof, double coef) {
+        return std::to_string(node) + ", " + std::to_string(dof) + ", " + num(coef);
+      };
+      for (fe::NodeId dn : c.dependents) {
+        const long d = id(dn);
+        fe::Vec3 a = m_.position(dn) - xr;
+        // Rounding residue of the mesh coordinates is not a lever arm (and
+        // ccx rejects equations with terms of ~1e-16).
+        for (int k = 0; k < 3; ++k)
+          if (std::abs(a[k]) < 1e-12 * a.norm()) a[k] = 0.0;
+        // (theta x a)_0 = theta_1 a_2 - theta_2 a_1, and cyclically.
+        for (int k = 0; k < 3; ++k) {
+          const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+          std::vector<std::string> terms{term(d, k + 1, 1.0), term(r, k + 1, -1.0)};
+          if (a[k2] != 0.0) terms.push_back(term(q, k1 + 1, -a[k2]));
+          if (a[k1] != 0.0) terms.push_back(term(q, k2 + 1, a[k1]));
+          out_ += std::to_string(terms.size()) + "\n";
+          for (size_t t = 0; t < terms.size(); ++t) out_ += terms[t] + (t + 1 == terms.size() ? "\n" : ", ");
+        }
+        if (in_elements(dn))
+          for (int k = 1; k <= 3; ++k) out_ += "2\n" + term(d, k + 3, 1.0) + ", " + term(q, k, -1.0) + "\n";
+      }
+      if (in_elements(c.reference))
+        for (int k = 1; k <= 3; ++k) out_ += "2\n" + term(r, k + 3, 1.0) + ", " + term(q, k, -1.0) + "\n";
+      rot_of_reference_[c.reference] = q;
+    }
+  }
+
+  // ---- supports ----------------------------------------------------------------
+  void write_boundaries() {
+    std::string b;
+    for (const fe::Support& s : m_.supports) {
+      const long n = id(s.node);
+      const auto rot = rot_of_reference_.find(s.node);
+      for (int d = 0; d < 6; ++d) {
+        if (!s.fixed[static_cast<size_t>(d)]) continue;
+        if (d < 3) {
+          b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
+        } else if (rot != rot_of_reference_.end()) {
+          // rotation of a coupling reference: it lives in the rotation
+          // node's translations (the reference's own rotations, if any,
+          // are dependent DOFs of the coupling equations)
+          b += std::to_string(rot->second) + ", " + std::to_string(d - 2) + ", " + std::to_string(d - 2) + "\n";
+        } else if (in_elements(s.node)) {
+          b += std::to_string(n) + ", " + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n";
+        }
+        // else: a rotation nothing stiffens (rigflex drops it as unused)
+      }
+    }
+    for (long a : anchored_) b += std::to_string(a) + ", 1, 3\n";
+    if (!b.empty()) out_ += "*BOUNDARY\n" + b;
+  }
+
+  const fe::Model& m_;
+  const CalculixOptions& opt_;
+  std::string out_;
+  std::unordered_map<fe::NodeId, long> ccx_id_;
+  std::unordered_set<fe::NodeId> element_node_;
+  std::unordered_map<fe::NodeId, size_t> first_beam_, first_shell_;
+  std::vector<Anchor> anchors_;
+  long next_node_ = 1;
+  long element_ = 0;
+  std::vector<std::pair<long, fe::Vec3>> extra_nodes_;
+  std::vector<long> beam_mid_, rot_node_, anchor_, anchored_;
+  std::map<fe::NodeId, long> rot_of_reference_;
+  std::map<std::pair<std::string, bool>, std::string> material_names_;
+};
+
+}  // namespace
+
+void CalculixOptions::validate() const {
+  if (modes < 1) throw std::invalid_argument("CalculixOptions::modes must be at least 1");
+  if (heading.find('\n') != std::string::npos)
+    throw std::invalid_argument("CalculixOptions::heading must be a single line");
+}
+
+std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) {
+  return InputWriter(model, opt).write();
+}
+
+void parse_calculix_eigenvalues(const std::string& dat_text, std::vector<double>& eigenvalues,
+                                std::vector<double>& frequencies_hz) {
+  eigenvalues.clear();
+  frequencies_hz.clear();
+  const auto at = dat_text.find("E I G E N V A L U E   O U T P U T");
+  if (at == std::string::npos) throw std::runtime_error("no eigenvalue table (E I G E N V A L U E   O U T P U T)");
+  std::istringstream in(dat_text.substr(at));
+  std::string line;
+  std::getline(in, line);  // the title
+  // Header lines, then rows "mode  eigenvalue  rad/time  cycles/time  imag";
+  // the table ends at the first line that is not such a row.
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    long mode = 0;
+    double lambda = 0, omega = 0, f = 0, imag = 0;
+    if (row >> mode >> lambda >> omega >> f >> imag) {
+      eigenvalues.push_back(lambda);
+      frequencies_hz.push_back(f);
+    } else if (!eigenvalues.empty()) {
+      break;
+    }
+  }
+  if (eigenvalues.empty()) throw std::runtime_error("the eigenvalue table has no rows");
+}
+
+bool calculix_available(const std::string& executable) {
+  if (executable.find('/') != std::string::npos) return ::access(executable.c_str(), X_OK) == 0;
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::istringstream dirs(path);
+  std::string dir;
+  while (std::getline(dirs, dir, ':')) {
+    if (dir.empty()) dir = ".";
+    if (::access((fs::path(dir) / executable).c_str(), X_OK) == 0) return true;
+  }
+  return false;
+}
+
+namespace {
+
+std::string tail_of(const fs::path& file, size_t chars) {
+  std::ifstream in(file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.size() > chars ? "..." + text.substr(text.size() - chars) : text;
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return {};
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Runs argv in `dir` with stdout and stderr to `log`; returns the exit
+// status and fills the child's resource usage. Throws if it cannot start.
+int run_child(const std::vector<std::string>& argv, const fs::path& dir, const fs::path& log,
+              const std::vector<std::string>& extra_env, struct rusage& usage) {
+  std::vector<std::string> env_store;
+  for (char** e = environ; e && *e; ++e) {
+    const std::string kv(*e);
+    const std::string key = kv.substr(0, kv.find('='));
+    bool overridden = false;
+    for (const std::string& x : extra_env) overridden = overridden || x.substr(0, x.find('=')) == key;
+    if (!overridden) env_store.push_back(kv);
+  }
+  for (const std::string& x : extra_env) env_store.push_back(x);
+  std::vector<char*> envp, args;
+  for (auto& s : env_store) envp.push_back(s.data());
+  envp.push_back(nullptr);
+  std::vector<std::string> argv_store = argv;
+  for (auto& s : argv_store) args.push_back(s.data());
+  args.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  const std::string log_path = fs::absolute(log).string();
+  posix_spawn_file_actions_addopen(&actions, 1, log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const int rc = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(rc));
+  int status = 0;
+  while (::wait4(pid, &status, 0, &usage) < 0) {
+    if (errno != EINTR) throw std::runtime_error("waiting for " + argv[0] + " failed: " + std::strerror(errno));
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  return 128 + (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+void check_run_options(const CalculixRunOptions& run) {
+  if (run.job.empty() || run.job.find('/') != std::string::npos)
+    throw std::invalid_argument("CalculixRunOptions::job must be a plain file name");
+  if (run.threads < 0) throw std::invalid_argument("CalculixRunOptions::threads must be non-negative");
+}
+
+std::vector<std::string> child_environment(const CalculixRunOptions& run) {
+  std::vector<std::string> env;
+  if (run.threads > 0) {
+    const std::string t = std::to_string(run.threads);
+    for (const char* key : {"OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
+                            "CCX_NPROC_RESULTS", "OPENBLAS_NUM_THREADS"})
+      env.push_back(std::string(key) + "=" + t);
+  }
+  return env;
+}
+
+}  // namespace
+
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir) {
+  return run_calculix_frequencies(model, count, work_dir, CalculixRunOptions{});
+}
+
+CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, const fs::path& work_dir,
+                                             const CalculixRunOptions& run) {
+  check_run_options(run);
+  CalculixOptions opt;
+  opt.modes = count;
+  opt.heading = "rigflex cross-check";
+  fs::create_directories(work_dir);
+  CalculixFrequencies r;
+  r.input = work_dir / (run.job + ".inp");
+  r.dat = work_dir / (run.job + ".dat");
+  r.log = work_dir / (run.job + ".log");
+
+  using clock = std::chrono::steady_clock;
+  auto t0 = clock::now();
+  write_text_atomically(r.input, calculix_input(model, opt));
+  r.write_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  std::error_code ec;
+  fs::remove(r.dat, ec);  // never read a stale table
+
+  struct rusage usage {};
+  t0 = clock::now();
+  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, child_environment(run), usage);
+  r.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  r.max_rss_kb = usage.ru_maxrss;
+
+  const std::string dat = read_text(r.dat);
+  {
+    const std::string log = read_text(r.log);
+    const auto at = log.find("number of equations");
+    if (at != std::string::npos) {
+      std::istringstream in(log.substr(at + std::string("number of equations").size()));
+      in >> r.equations;
+    }
+  }
+  try {
+    if (status != 0) throw std::runtime_error("exit status " + std::to_string(status));
+    parse_calculix_eigenvalues(dat, r.eigenvalues, r.frequencies_hz);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("CalculiX run in " + work_dir.string() + " failed (" + e.what() + "); see " +
+                             r.log.string() + ":\n" + tail_of(r.log, 1500));
+  }
+  return r;
+}
+
+// ---------------------------------------------------------------------------
+// ccx's matrices (SOLVER=MATRIXSTORAGE)
+
+namespace {
+
+// Lines of `text` with their 1-based numbers; blank lines are skipped.
+template <typename F>
+void for_each_line(const std::string& text, F&& f) {
+  size_t start = 0;
+  long number = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    ++number;
+    std::string_view line(text.data() + start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.find_first_not_of(" \t") != std::string_view::npos) f(line, number);
+    start = end + 1;
+  }
+}
+
+[[noreturn]] void bad_line(const std::string& file, long line, const std::string& what, std::string_view text) {
+  throw std::runtime_error(file + ":" + std::to_string(line) + ": " + what + ", got '" +
+                           std::string(text.substr(0, 80)) + "'");
+}
+
+// The next blank-separated field of `rest`, which is advanced past it.
+std::string_view next_field(std::string_view& rest) {
+  const size_t b = rest.find_first_not_of(" \t");
+  if (b == std::string_view::npos) {
+    rest = {};
+    return {};
+  }
+  rest.remove_prefix(b);
+  const size_t e = std::min(rest.find_first_of(" \t"), rest.size());
+  const std::string_view field = rest.substr(0, e);
+  rest.remove_prefix(e);
+  return field;
+}
+
+template <typename T>
+bool parse_whole(std::string_view s, T& value) {
+  if (s.empty()) return false;
+  const auto r = std::from_chars(s.data(), s.data() + s.size(), value);
+  return r.ec == std::errc() && r.ptr == s.data() + s.size();
+}
+
+}  // namespace
+
+std::vector<std::pair<long, int>> parse_calculix_dofs(const std::string& text, const std::string& file) {
+  std::vector<std::pair<long, int>> dofs;
+  for_each_line(text, [&](std::string_view line, long number) {
+    std::string_view rest = line;
+    const std::string_view field = next_field(rest);
+    const size_t dot = field.find('.');
+    long node = 0;
+    int direction = -1;
+    if (!next_field(rest).empty() || dot == std::string_view::npos || !parse_whole(field.substr(0, dot), node) ||
+        !parse_whole(field.substr(dot + 1), direction) || node < 1 || direction < 0)
+      bad_line(file, number, "expected node.direction", line);
+    dofs.emplace_back(node, direction);
+  });
+  if (dofs.empty()) throw std::runtime_error(file + ": no degrees of freedom");
+  return dofs;
+}
+
+CalculixSparse parse_calculix_matrix(const std::string& text, Eigen::Index size, const std::string& file) {
+  if (size < 1) throw std::invalid_argument("parse_calculix_matrix: size must be positive");
+  struct Entry {
+    long column, row, line;
+  };
+  std::vector<Entry> entries;
+  std::vector<Eigen::Triplet<double>> triplets;
+  entries.reserve(text.size() / 40);
+  triplets.reserve(text.size() / 20);
+  bool ordered = true;  // ccx sorts by column, then row: then repeats show as a non-increasing pair
+  for_each_line(text, [&](std::string_view line, long number) {
+    std::string_view rest = line;
+    long i = 0, j = 0;
+    double v = 0;
+    if (!parse_whole(next_field(rest), i) || !parse_whole(next_field(rest), j) ||
+        !parse_whole(next_field(rest), v) || !next_field(rest).empty())
+      bad_line(file, number, "expected 'row column value'", line);
+    if (i < 1 || j < 1 || i > size || j > size)
+      bad_line(file, number, "index outside 1.." + std::to_string(size) + " (the size of the .dof file)", line);
+    if (i > j) bad_line(file, number, "entry below the diagonal (ccx stores the upper triangle)", line);
+    if (!std::isfinite(v)) bad_line(file, number, "value is not finite", line);
+    if (!entries.empty()) {
+      const Entry& p = entries.back();
+      ordered = ordered && (j > p.column || (j == p.column && i > p.row));
+    }
+    entries.push_back({j, i, number});
+    triplets.emplace_back(i - 1, j - 1, v);
+    if (i != j) triplets.emplace_back(j - 1, i - 1, v);
+  });
+  if (entries.empty()) throw std::runtime_error(file + ": no matrix entries");
+  if (!ordered) {
+    std::vector<Entry> sorted = entries;
+    std::stable_sort(sorted.begin(), sorted.end(), [](const Entry& a, const Entry& b) {
+      return a.column != b.column ? a.column < b.column : a.row < b.row;
+    });
+    for (size_t k = 1; k < sorted.size(); ++k)
+      if (sorted[k].column == sorted[k - 1].column && sorted[k].row == sorted[k - 1].row)
+        throw std::runtime_error(file + ":" + std::to_string(std::max(sorted[k].line, sorted[k - 1].line)) +
+                                 ": entry (" + std::to_string(sorted[k].row) + ", " +
+                                 std::to_string(sorted[k].column) + ") repeated (first on line " +
+                                 std::to_string(std::min(sorted[k].line, sorted[k - 1].line)) + ")");
+  }
+  CalculixSparse a(size, size);
+  a.setFromTriplets(triplets.begin(), triplets.end());
+  return a;
+}
+
+std::optional<Eigen::Index> CalculixMatrices::row_of(fe::NodeId node, int direction) const {
+  std::optional<Eigen::Index> found;
+  std::array<int, 4> count{};
+  for (size_t r = 0; r < dofs.size(); ++r) {
+    const CalculixDof& d = dofs[r];
+    if (d.origin != CalculixNodeOrigin::model || d.model_node != node) continue;
+    if (d.direction >= 0 && d.direction < 4) ++count[static_cast<size_t>(d.direction)];
+    if (d.direction == direction) found = static_cast<Eigen::Index>(r);
+  }
+  // A direction labelled twice means expanded nodes (see the header): then
+  // even a direction labelled once may be a DOF of an expanded node.
+  for (int c : count)
+    if (c > 1) return std::nullopt;
+  return found;
+}
+
+CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& work_dir) {
+  return run_calculix_matrices(model, work_dir, CalculixRunOptions{});
+}
+
+CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& work_dir,
+                                       const CalculixRunOptions& run) {
+  check_run_options(run);
+  CalculixOptions opt;
+  opt.modes = 1;
+  opt.heading = "rigflex matrix export";
+  opt.matrix_storage = true;
+  InputWriter writer(model, opt);
+  const std::string deck = writer.write();
+
+  CalculixMatrices r;
+  fs::create_directories(work_dir);
+  r.input = work_dir / (run.job + ".inp");
+  r.stiffness = work_dir / (run.job + ".sti");
+  r.mass = work_dir / (run.job + ".mas");
+  r.dof_file = work_dir / (run.job + ".dof");
+  r.log = work_dir / (run.job + ".log");
+  write_text_atomically(r.input, deck);
+  for (const fs::path& p : {r.stiffness, r.mass, r.dof_file}) {
+    std::error_code ec;
+    fs::remove(p, ec);  // never read stale matrices
+  }
+
+  struct rusage usage {};
+  const auto t0 = std::chrono::steady_clock::now();
+  const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, child_environment(run), usage);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto failed = [&](const std::string& why) {
+    return std::runtime_error("CalculiX run in " + work_dir.string() + " failed (" + why + "); see " +
+                              r.log.string() + ":\n" + tail_of(r.log, 1500));
+  };
+  if (status != 0) throw failed("exit status " + std::to_string(status));
+  for (const fs::path& p : {r.stiffness, r.mass, r.dof_file})
+    if (!fs::exists(p)) throw failed("no " + p.filename().string() + " written");
+
+  std::unordered_map<long, fe::NodeId> model_node;
+  for (const auto& [id, ccx] : writer.ccx_ids()) model_node.emplace(ccx, id);
+  const long first_generated = writer.first_free_node();
+  for (const auto& [node, direction] : parse_calculix_dofs(read_text(r.dof_file), r.dof_file.string())) {
+    CalculixDof d;
+    d.ccx_node = node;
+    d.direction = direction;
+    if (const auto it = model_node.find(node); it != model_node.end()) {
+      d.origin = CalculixNodeOrigin::model;
+      d.model_node = it->second;
+    } else {
+      d.origin = node < first_generated ? CalculixNodeOrigin::writer : CalculixNodeOrigin::ccx;
+    }
+    r.dofs.push_back(d);
+  }
+  const auto n = static_cast<Eigen::Index>(r.dofs.size());
+  r.K = parse_calculix_matrix(read_text(r.stiffness), n, r.stiffness.string());
+  r.M = parse_calculix_matrix(read_text(r.mass), n, r.mass.string());
+  return r;
+}
+
+}  // namespace rigflex::verification
