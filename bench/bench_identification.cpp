@@ -105,7 +105,7 @@ void accuracy(const rig::RigModel& model, const Sets& sets) {
       worst_plane = std::max({worst_plane, std::abs(p.cog.x() - truth.cog.x()), std::abs(p.cog.y() - truth.cog.y())});
     }
     const identify::SampleSummary z = identify::summarize(dz);
-    std::printf("| %s | %+.2f | %.2f | %.2f | %+.3f | %+.3f | %+.3f | %.3f | %zu |\n", rig::to_string(alg), 1e3 * z.mean,
+    std::printf("| %s | %+.2f | %.2f | %.2f | %+.3f | %+.3f | %+.3f | %.3f | %zu |\n", identify::to_string(alg), 1e3 * z.mean,
                 1e3 * z.std.value_or(0.0), 1e3 * worst_plane, 100 * worst_moment[0], 100 * worst_moment[1],
                 100 * worst_moment[2], 100 * worst_product, found.size());
   }
@@ -190,7 +190,7 @@ int main(int argc, char** argv) {
           mem = std::min(mem, time_in_memory(idr, sets, o.measurements, threads));
           csv = std::min(csv, time_from_files(idr, folders, o.measurements, threads));
         }
-        std::printf("| %s | %d | %.2f | %.2f | 5 |\n", rig::to_string(alg), threads, mem, csv);
+        std::printf("| %s | %d | %.2f | %.2f | 5 |\n", identify::to_string(alg), threads, mem, csv);
       }
     }
     const identify::IdentificationRig idr = identify::identification_rig(model, identify::IdentificationAlgorithm::rigid);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The demo's commands on the bundled examples, with a given binary into a
-# given folder:  bash scripts/run_demo.sh RIGFLEX OUT_DIR
+# given folder (relative to the repository root, or absolute):
+#   bash scripts/run_demo.sh RIGFLEX OUT_DIR
 # scripts/demo.sh runs it after installing and building; scripts/demo_diff.sh
 # runs it with two binaries to show that a change left every output alone.
 set -euo pipefail

@@ -658,7 +658,7 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
 
   using clock = std::chrono::steady_clock;
   auto t0 = clock::now();
-  write_text_atomically(r.input, calculix_input(model, opt));
+  io::write_text_atomically(r.input, calculix_input(model, opt));
   r.write_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   std::error_code ec;
   fs::remove(r.dat, ec);  // never read a stale table
@@ -838,7 +838,7 @@ CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& w
   r.mass = work_dir / (run.job + ".mas");
   r.dof_file = work_dir / (run.job + ".dof");
   r.log = work_dir / (run.job + ".log");
-  write_text_atomically(r.input, deck);
+  io::write_text_atomically(r.input, deck);
   for (const fs::path& p : {r.stiffness, r.mass, r.dof_file}) {
     std::error_code ec;
     fs::remove(p, ec);  // never read stale matrices

@@ -11,7 +11,8 @@
 
 #include "identify/mass_statistics.hpp"
 
-using namespace rigflex::rig;
+
+using namespace rigflex::identify;
 using rigflex::fe::MassProperties;
 
 namespace {

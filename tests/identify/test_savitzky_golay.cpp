@@ -14,7 +14,8 @@
 
 #include "identify/savitzky_golay.hpp"
 
-using namespace rigflex::rig;
+
+using namespace rigflex::identify;
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include "linalg/eigen_solver.hpp"
 #include "test_pencils.hpp"
 
-namespace rigflex::reduction {
+namespace rigflex::linalg {
 namespace {
 
 using testing::Pencil;
@@ -92,4 +92,4 @@ TEST(DenseEigen, InvalidArgumentsThrow) {
 }
 
 }  // namespace
-}  // namespace rigflex::reduction
+}  // namespace rigflex::linalg

@@ -8,7 +8,7 @@
 #include "linalg/eigen_solver.hpp"
 #include "test_pencils.hpp"
 
-namespace rigflex::reduction {
+namespace rigflex::linalg {
 namespace {
 
 // Expects validate(n) to throw std::invalid_argument naming `option`.
@@ -93,4 +93,4 @@ TEST(EigenResult, FrequenciesInHertz) {
 }
 
 }  // namespace
-}  // namespace rigflex::reduction
+}  // namespace rigflex::linalg

@@ -25,7 +25,7 @@
 #include "linalg/mechanism.hpp"
 #include "test_pencils.hpp"
 
-namespace rigflex::reduction {
+namespace rigflex::linalg {
 namespace {
 
 using testing::Pencil;
@@ -395,4 +395,4 @@ TEST(LanczosAutomatic, BlockSizeFitsAGivenSubspace) {
 }
 
 }  // namespace
-}  // namespace rigflex::reduction
+}  // namespace rigflex::linalg

@@ -6,7 +6,7 @@
 #include "linalg/mechanism.hpp"
 #include "test_pencils.hpp"
 
-namespace rigflex::reduction {
+namespace rigflex::linalg {
 namespace {
 
 using Eigen::Index;
@@ -70,4 +70,4 @@ TEST(Mechanism, InvalidSizesThrow) {
 }
 
 }  // namespace
-}  // namespace rigflex::reduction
+}  // namespace rigflex::linalg

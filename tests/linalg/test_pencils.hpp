@@ -14,7 +14,7 @@
 
 #include "linalg/eigen_solver.hpp"
 
-namespace rigflex::reduction::testing {
+namespace rigflex::linalg::testing {
 
 using Eigen::Index;
 using Eigen::MatrixXd;
@@ -232,4 +232,4 @@ inline void expect_same_subspaces(const Pencil& p, const EigenResult& a, const E
   }
 }
 
-}  // namespace rigflex::reduction::testing
+}  // namespace rigflex::linalg::testing

@@ -10,7 +10,7 @@
 #include "linalg/sparse_cholesky.hpp"
 #include "test_pencils.hpp"
 
-namespace rigflex::reduction {
+namespace rigflex::linalg {
 namespace {
 
 using testing::diagonal_matrix;
@@ -234,4 +234,4 @@ TEST(SparseCholesky, InvalidUseThrows) {
 }
 
 }  // namespace
-}  // namespace rigflex::reduction
+}  // namespace rigflex::linalg
