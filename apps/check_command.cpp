@@ -6,7 +6,6 @@
 // rig's modes for ParaView (DIR/rig_modes.pvd).
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
 #include "io/atomic_file.hpp"
@@ -16,6 +15,7 @@
 #include "rig/equilibrium.hpp"
 #include "identify/identification_rig.hpp"
 #include "identify/predicted_error.hpp"
+#include "report/check_json.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -29,71 +29,6 @@ struct CheckArgs {
   unsigned long long seed = 1;
   bool quiet = false;
 };
-
-nlohmann::json summary_json(const identify::ErrorSummary& e) {
-  return {{"zG_mean_m", e.zG_mean_m},         {"zG_std_m", e.zG_std_m},
-          {"moment_mean", e.moment_mean},     {"moment_std", e.moment_std},
-          {"product_max_of_largest", e.product_max}, {"cog_in_plane_max_m", e.cog_in_plane_max_m}};
-}
-
-nlohmann::json optional_number(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); }
-
-nlohmann::json to_json(const rig::RigModel& model, const rig::CheckResult& r, const std::optional<identify::Prediction>& p) {
-  nlohmann::json j;
-  j["rig"] = model.name;
-  j["swing_frequencies_hz"] = r.swing_frequencies_hz;
-  j["first_deformation_frequency_hz"] = optional_number(r.first_deformation_frequency_hz);
-  j["ratio"] = optional_number(r.ratio);
-  j["verdict"] = rig::to_string(p ? p->combined : r.verdict);
-  j["ratio_verdict"] = rig::to_string(r.verdict);
-  if (p) {
-    nlohmann::json pe = {{"algorithm", "rigid"},
-                         {"sets", p->sets},
-                         {"histories", p->histories},
-                         {"duration_s", p->duration_s},
-                         {"observable", p->unobservable.empty()}};
-    if (p->rigid) {
-      pe.update(summary_json(*p->rigid));
-    } else {
-      pe["zG_mean_m"] = nullptr;
-      pe["zG_std_m"] = nullptr;
-      pe["unobservable"] = p->unobservable;
-    }
-    if (p->from_flexibility) pe["from_flexibility"] = summary_json(*p->from_flexibility);
-    if (p->flexible) pe["flexible_algorithm"] = summary_json(*p->flexible);
-    pe["verdict"] = rig::to_string(p->verdict);
-    if (!p->note.empty()) pe["note"] = p->note;
-    j["predicted_error"] = pe;
-  }
-  j["strain_energy_share"] = {{"fixed_frame", r.share_fixed_frame},
-                              {"rods", r.share_rods},
-                              {"carrying_frame", r.share_carrying_frame}};
-  if (r.advice) {
-    j["stiffen"] = {{"component", rig::to_string(r.advice->component)},
-                    {"stiffness_factor", optional_number(r.advice->factor)},
-                    {"ratio_with_component_1e4_stiffer", r.advice->ratio_limit},
-                    {"message", r.advice->message}};
-  }
-  nlohmann::json modes = nlohmann::json::array();
-  for (const auto& m : r.linearization.modes) {
-    const double total = m.strain.total();
-    modes.push_back({{"frequency_hz", m.frequency_hz},
-                     {"kind", rig::to_string(m.kind)},
-                     {"elastic_fraction", m.elastic_fraction},
-                     {"body_fraction", m.body_fraction},
-                     {"strain_energy_share",
-                      {{"fixed_frame", total > 0 ? m.strain.fixed_frame / total : 0.0},
-                       {"rods", total > 0 ? m.strain.rods / total : 0.0},
-                       {"carrying_frame", total > 0 ? m.strain.carrying_frame / total : 0.0}}}});
-  }
-  j["modes"] = modes;
-  const auto& eq = r.linearization.equilibrium;
-  j["equilibrium"] = {{"steps", eq.iterations}, {"residual", eq.residual}};
-  j["eigen_check"] = {{"max_residual", r.linearization.eigen.residuals.maxCoeff()},
-                      {"orthogonality_error", r.linearization.eigen.orthogonality_error},
-                      {"stiffness_asymmetry", r.linearization.asymmetry}};
-  return j;
-}
 
 void print_errors(const char* what, const identify::ErrorSummary& e) {
   std::printf("  %s: zG %+.2f mm (std %.2f mm); Jxx %+.2f %%, Jyy %+.2f %%, Jzz %+.2f %%; products <= %.2f %% of "
@@ -171,7 +106,7 @@ int run(const CheckArgs& a) {
     const std::filesystem::path out(a.out);
     std::filesystem::create_directories(out);
     io::FileBatch batch;
-    batch.add_text(out / "check.json", to_json(model, r, prediction).dump(2) + "\n");
+    batch.add_text(out / "check.json", report::check_json(model, r, prediction).dump(2) + "\n");
     const rig::RigSystem rig(model);
     io::add_rig_mode_files(batch, out, rig, r.linearization);
     batch.commit();

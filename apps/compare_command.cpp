@@ -122,16 +122,12 @@ int run(const CompareArgs& a) {
     for (size_t i = 0; i < c.channels.size(); ++i) e.nrmse[c.channels[i]] = c.nrmse(static_cast<Eigen::Index>(i));
     if (c.identified) e.identified_cog_z = c.identified->properties.cog.z();
     entries = report::study_with(a.study, e);
-    nlohmann::ordered_json versions = nlohmann::ordered_json::array();
     std::printf("study %s:\n%-8s %-12s %-12s %s\n", a.study.c_str(), "version", "overall", "forces", "model");
     for (const auto& x : entries) {
       std::printf("%-8d %-12.4f %-12.4f %s%s\n", x.version, x.overall_nrmse, x.force_nrmse, x.label.c_str(),
                   x.fingerprint == e.fingerprint ? "  <- this run" : "");
-      versions.push_back({{"version", x.version}, {"label", x.label}, {"overall_nrmse", x.overall_nrmse},
-                          {"force_nrmse", x.force_nrmse}, {"angle_nrmse", x.angle_nrmse},
-                          {"current", x.fingerprint == e.fingerprint}});
     }
-    j["study"] = versions;
+    j["study"] = report::study_versions_json(entries, e.fingerprint);
   }
 
   const std::filesystem::path out(a.out);

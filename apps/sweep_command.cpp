@@ -1,14 +1,14 @@
 // rigflex sweep RIG.yaml [--mass-scale 0.1:1:10] [--stiffness-scale 1:10:10]
 //   [--sets 9] [--histories 6] [--duration 15] [--seed S] [--threads N] --out DIR:
-// identification error against mass and stiffness (rig/sweep.hpp), as
+// identification error against mass and stiffness (identify/sweep.hpp), as
 // DIR/sweep.csv, DIR/sweep.json and the report DIR/sweep.html.
 #include <cstdio>
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "apps/commands.hpp"
 #include "report/reports.hpp"
+#include "report/sweep_json.hpp"
 #include "io/atomic_file.hpp"
 #include "io/rig_reader.hpp"
 #include "identify/sweep.hpp"
@@ -38,54 +38,6 @@ identify::ScaleRange parse_range(const std::string& text, const std::string& opt
   return r;
 }
 
-std::string number(const std::optional<double>& v) {
-  if (!v) return "";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.6g", *v);
-  return b;
-}
-
-std::string csv(const std::vector<identify::SweepPoint>& points) {
-  std::string out =
-      "kind,scale,f1_hz,swing_max_hz,ratio,rigid_zG_mean_m,rigid_zG_std_m,rigid_Jyy_mean,rigid_Jyy_std,"
-      "flexible_zG_mean_m,flexible_zG_std_m,flexible_Jyy_mean,flexible_Jyy_std,failure\n";
-  for (const auto& p : points) {
-    out += std::string(identify::to_string(p.kind)) + "," + number(p.scale) + "," + number(p.f1_hz) + "," +
-           number(p.swing_max_hz) + "," + number(p.ratio);
-    for (const auto* e : {&p.rigid, &p.flexible}) {
-      if (*e) {
-        out += "," + number((*e)->zG_mean_m) + "," + number((*e)->zG_std_m) + "," + number((*e)->moment_mean[1]) +
-               "," + number((*e)->moment_std[1]);
-      } else {
-        out += ",,,,";
-      }
-    }
-    std::string why = p.failure;
-    for (char& c : why) {
-      if (c == ',' || c == '\n') c = ';';
-    }
-    out += "," + why + "\n";
-  }
-  return out;
-}
-
-nlohmann::ordered_json errors_json(const std::optional<identify::ErrorSummary>& e) {
-  if (!e) return nullptr;
-  return {{"sets", e->sets},
-          {"zG_mean_m", e->zG_mean_m},
-          {"zG_std_m", e->zG_std_m},
-          {"moment_mean", e->moment_mean},
-          {"moment_std", e->moment_std},
-          {"Jyy_mean", e->moment_mean[1]},
-          {"Jyy_std", e->moment_std[1]},
-          {"product_max_of_largest", e->product_max},
-          {"cog_in_plane_max_m", e->cog_in_plane_max_m}};
-}
-
-nlohmann::ordered_json optional_json(const std::optional<double>& v) {
-  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
-}
-
 int run(const SweepArgs& a) {
   const rig::RigModel model = io::read_rig(a.rig);
   identify::SweepOptions o;
@@ -101,36 +53,25 @@ int run(const SweepArgs& a) {
 
   std::printf("%-9s %7s %8s %7s %12s %10s %12s %10s %s\n", "kind", "scale", "f1 [Hz]", "ratio", "rigid zG mm",
               "rigid Jyy%", "flex zG mm", "flex Jyy%", "");
-  nlohmann::ordered_json pts = nlohmann::ordered_json::array();
   for (const auto& p : points) {
     auto mm = [](const std::optional<identify::ErrorSummary>& e) { return e ? 1e3 * e->zG_mean_m : NAN; };
     auto pc = [](const std::optional<identify::ErrorSummary>& e) { return e ? 100 * e->moment_mean[1] : NAN; };
     std::printf("%-9s %7.3g %8.3f %7.2f %12.2f %10.3f %12.2f %10.3f %s\n", identify::to_string(p.kind), p.scale,
                 p.f1_hz.value_or(NAN), p.ratio.value_or(NAN), mm(p.rigid), pc(p.rigid), mm(p.flexible),
                 pc(p.flexible), p.failure.c_str());
-    pts.push_back({{"kind", identify::to_string(p.kind)},
-                   {"scale", p.scale},
-                   {"f1_hz", optional_json(p.f1_hz)},
-                   {"swing_max_hz", optional_json(p.swing_max_hz)},
-                   {"ratio", optional_json(p.ratio)},
-                   {"rigid", errors_json(p.rigid)},
-                   {"flexible", errors_json(p.flexible)},
-                   {"failure", p.failure.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(p.failure)}});
   }
-  nlohmann::ordered_json j;
-  j["rig"] = model.name;
-  j["mass_scale"] = a.mass_scale;
-  j["stiffness_scale"] = a.stiffness_scale;
-  j["sets"] = a.sets;
-  j["histories"] = a.histories;
-  j["duration_s"] = a.duration;
-  j["seed"] = a.seed;
-  j["points"] = pts;
+  report::SweepSettings settings;
+  settings.mass_scale = a.mass_scale;
+  settings.stiffness_scale = a.stiffness_scale;
+  settings.sets = a.sets;
+  settings.histories = a.histories;
+  settings.duration_s = a.duration;
+  settings.seed = a.seed;
   const std::filesystem::path out(a.out);
   std::filesystem::create_directories(out);
   io::FileBatch batch;
-  batch.add_text(out / "sweep.csv", csv(points));
-  batch.add_text(out / "sweep.json", j.dump(2) + "\n");
+  batch.add_text(out / "sweep.csv", report::sweep_csv(points));
+  batch.add_text(out / "sweep.json", report::sweep_json(model.name, settings, points).dump(2) + "\n");
   batch.add_text(out / "sweep.html", report::sweep_html(model.name, points).html());
   batch.commit();
   std::printf("(errors: identified - true; zG mean over the sets in mm, Jyy mean relative in %%)\nwrote %s/sweep.csv, sweep.json and sweep.html\n",

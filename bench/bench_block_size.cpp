@@ -1,6 +1,6 @@
 // Lanczos block size: which one is fastest, and does the automatic choice
 // (EigenOptions::block_size = 0, see automatic_block_size in
-// reduction/eigen_solver.hpp) pick it?
+// linalg/eigen_solver.hpp) pick it?
 //
 // For models of different fill -- clamped MITC4 and 8-node plates (2D fill),
 // a long shell box girder (a folded plate, as rig frames are built),

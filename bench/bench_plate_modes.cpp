@@ -7,7 +7,7 @@
 //       block size, and the final purification of the converged vectors
 //       in one solve), timed separately on a fresh SparseCholesky;
 //   (b) CalculiX *FREQUENCY on the same mesh (S4 shells, see
-//       io/calculix_writer.hpp), run as a child process;
+//       verification/calculix.hpp), run as a child process;
 //   (c) SciPy eigsh (ARPACK shift-invert with SuperLU, Debian
 //       python3-scipy) on the same K and M (Matrix Market), same shift,
 //       run as a child process (bench/scipy_eigsh.py).
@@ -67,7 +67,7 @@
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix_writer.hpp"
+#include "verification/calculix.hpp"
 #include "linalg/eigen_solver.hpp"
 #include "linalg/sparse_cholesky.hpp"
 

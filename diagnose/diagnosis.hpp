@@ -1,9 +1,9 @@
 #pragma once
 // Which physical effect is the model missing? For every effect of the
-// catalogue (rig/effect_candidates.hpp) that the model does not contain,
+// catalogue (diagnose/effect_candidates.hpp) that the model does not contain,
 // its parameters are fitted to the measurements together with every
 // history's swing state, by Gauss-Newton on the noise-weighted swing-band
-// residuals (rig/compare.hpp), sensitivities by finite differences of
+// residuals (diagnose/history_comparison.hpp), sensitivities by finite differences of
 // simulations, steps taken on the nonlinear model (re-simulated, halved
 // until the residual falls; chord steps on one linearization, then a new
 // one while that gains). Each effect is then

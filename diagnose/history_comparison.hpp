@@ -2,13 +2,13 @@
 // Model against measurement, history by history. The record is put on a
 // uniform time grid; each channel's noise is estimated from the record; the
 // swing state is fitted to the record's first seconds by Levenberg-Marquardt
-// on the swing-band residuals (rig/swing_band.hpp), each channel weighted by
+// on the swing-band residuals (diagnose/swing_band.hpp), each channel weighted by
 // its filtered noise; the whole record is simulated from it.
 //
 // Normalized RMS error of a channel: RMS(measured - model) / std(measured),
 // the residual against what the channel's signal varies by (the static load
 // of a rod would make a force residual look small otherwise), in the swing
-// band (both signals through the band's low-pass, rig/swing_band.hpp): the
+// band (both signals through the band's low-pass, diagnose/swing_band.hpp): the
 // swing and the quasi-static response, where the identification works and
 // the catalogue's effects act, without the noise and the frames' ringing
 // after release. The raw figure (every sample, noise and ringing included)
@@ -87,7 +87,7 @@ struct HistoryComparison {
   Eigen::MatrixXd residual() const { return target.record.channels - model; }
 };
 
-// RecordError (rig/identification_kinematics.hpp) when the record cannot
+// RecordError (identify/identification_kinematics.hpp) when the record cannot
 // come from this rig: an encoder angle that turns a rod above its joint, or
 // lower joints (from the encoders) that do not form the carrying frame's
 // joint pattern within max(20 mm, 5 % of its radius).

@@ -1,6 +1,6 @@
 #pragma once
 // `rigflex compare` as a function: every history compared with the model
-// (rig/compare.hpp), the residuals analysed (rig/residual_analysis.hpp), the
+// (diagnose/history_comparison.hpp), the residuals analysed (diagnose/residual_analysis.hpp), the
 // mass properties identified from the same records with the model's
 // algorithm (flexible when the model has a flexible frame or rods), and the
 // checks that tell a user the model does not fit the data at all.
@@ -19,7 +19,7 @@ namespace rigflex::diagnose {
 struct ModelComparison {
   std::vector<std::string> channels;
   std::vector<HistoryComparison> histories;
-  Eigen::VectorXd nrmse;  // per channel, pooled, swing band (rig/compare.hpp)
+  Eigen::VectorXd nrmse;  // per channel, pooled, swing band (diagnose/history_comparison.hpp)
   double overall_nrmse = 0, force_nrmse = 0, angle_nrmse = 0;
   Eigen::VectorXd raw_nrmse;  // per channel, pooled, every sample
   double raw_overall_nrmse = 0, raw_force_nrmse = 0;

@@ -1,7 +1,7 @@
 #pragma once
 // What the rig model predicts the sensors read during a free swing that
 // starts from a given swing state: the forward half of model-vs-measurement
-// comparison (rig/compare.hpp) and of effect fitting (rig/diagnosis.hpp).
+// comparison (diagnose/history_comparison.hpp) and of effect fitting (diagnose/diagnosis.hpp).
 //
 // The swing state is six numbers at the record's first sample, relative to
 // the static equilibrium, all in G: P's horizontal displacement (x, y), the

@@ -80,26 +80,8 @@ double log_slope(const std::vector<double>& t, const std::vector<double>& y) {
   return den > 0 ? (n * sty - st * sy) / den : 0.0;
 }
 
-}  // namespace
-
-ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<HistoryComparison>& hs) {
-  ResidualAnalysis a;
-  if (hs.empty()) return a;
-  const int n = m.system.rods();
-  const int C = 3 * n;
-  a.channels = channel_names(n);
-  double longest_period = 0, highest_swing = 0;
-  for (const auto& mode : m.linearization.modes) {
-    a.mode_frequencies_hz.push_back(mode.frequency_hz);
-    a.mode_kinds.push_back(to_string(mode.kind));
-    if (mode.kind == rig::RigModeKind::swing && mode.frequency_hz > 0) {
-      longest_period = std::max(longest_period, 1.0 / mode.frequency_hz);
-      highest_swing = std::max(highest_swing, mode.frequency_hz);
-    }
-  }
-  if (longest_period <= 0) longest_period = 2.0;
-
-  // Per channel: noise, offsets, whiteness, energy.
+// Per channel: noise, offsets, whiteness, energy.
+void channel_statistics(const std::vector<HistoryComparison>& hs, int C, ResidualAnalysis& a) {
   a.noise = Eigen::VectorXd::Zero(C);
   a.noise_ratio = Eigen::VectorXd::Zero(C);
   a.static_offset = Eigen::VectorXd::Zero(C);
@@ -130,8 +112,10 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
     a.lag1(c) = var > 0 ? sum_lag(c) / (var * samples) : 0.0;
   }
   a.channel_share = energy / std::max(energy.sum(), 1e-300);
+}
 
-  // Trend and windows: one-second windows (at least a swing period).
+// Trend and windows: one-second windows (at least a swing period).
+void windows_and_trend(const std::vector<HistoryComparison>& hs, int C, double longest_period, ResidualAnalysis& a) {
   const double width = std::max(1.0, std::ceil(longest_period));
   double total_energy = 0;
   std::vector<std::pair<double, double>> trend_acc;  // per window index: sum of nrmse^2 terms, count
@@ -181,8 +165,11 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
       a.trend_slope = (N * sty - st * sy) / (N * stt - st * st);
     }
   }
+}
 
-  // Decay of the swing envelope, angle channels.
+// Decay of the swing envelope, angle channels.
+void envelope_decay(const std::vector<HistoryComparison>& hs, int n, double longest_period, ResidualAnalysis& a) {
+  const int C = 3 * n;
   double extra = 0;
   for (int j = 0; j < static_cast<int>(hs.size()); ++j) {
     const auto& h = hs[static_cast<size_t>(j)];
@@ -213,10 +200,13 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
     a.decay.push_back(d);
   }
   a.extra_decay_rate = extra;
+}
 
-  // Spectra: segments of about 8 s (a power of two, the record's length at
-  // most), on the first record's frequency axis; a record at another rate
-  // has its own segments, its spectrum interpolated onto that axis.
+// Spectra: segments of about 8 s (a power of two, the record's length at
+// most), on the first record's frequency axis; a record at another rate
+// has its own segments, its spectrum interpolated onto that axis.
+void residual_spectra(const std::vector<HistoryComparison>& hs, int n, double highest_swing, ResidualAnalysis& a) {
+  const int C = 3 * n;
   auto segment_for = [](double step, Eigen::Index length) {
     int seg = 16;
     while (seg * 2 <= length && seg * 2 * step <= 8.0 + 1e-9) seg *= 2;
@@ -271,9 +261,12 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
   };
   peaks(s.residual_force, "force");
   peaks(s.residual_angle, "angle");
+}
 
-  // Correlation of each channel's residual with the states of its rod (from
-  // the model: noise-free), pooled over the histories.
+// Correlation of each channel's residual with the states of its rod (from
+// the model: noise-free), pooled over the histories.
+void state_correlations(const std::vector<HistoryComparison>& hs, int n, ResidualAnalysis& a) {
+  const int C = 3 * n;
   const char* names[] = {"angle", "velocity", "sign_of_velocity", "acceleration", "rod_force"};
   for (int k = 0; k < 5; ++k) a.correlations.push_back({names[k], 0.0, "", Eigen::VectorXd::Zero(C)});
   for (int c = 0; c < C; ++c) {
@@ -314,6 +307,31 @@ ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<His
       }
     }
   }
+}
+
+}  // namespace
+
+ResidualAnalysis analyse_residuals(const ResponseModel& m, const std::vector<HistoryComparison>& hs) {
+  ResidualAnalysis a;
+  if (hs.empty()) return a;
+  const int n = m.system.rods();
+  const int C = 3 * n;
+  a.channels = channel_names(n);
+  double longest_period = 0, highest_swing = 0;
+  for (const auto& mode : m.linearization.modes) {
+    a.mode_frequencies_hz.push_back(mode.frequency_hz);
+    a.mode_kinds.push_back(to_string(mode.kind));
+    if (mode.kind == rig::RigModeKind::swing && mode.frequency_hz > 0) {
+      longest_period = std::max(longest_period, 1.0 / mode.frequency_hz);
+      highest_swing = std::max(highest_swing, mode.frequency_hz);
+    }
+  }
+  if (longest_period <= 0) longest_period = 2.0;
+  channel_statistics(hs, C, a);
+  windows_and_trend(hs, C, longest_period, a);
+  envelope_decay(hs, n, longest_period, a);
+  residual_spectra(hs, n, highest_swing, a);
+  state_correlations(hs, n, a);
   return a;
 }
 

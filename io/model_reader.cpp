@@ -501,12 +501,4 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   return out;
 }
 
-ModelFile read_model(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file.string(), 0, "", "cannot open the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_model(ss.str(), file.string());
-}
-
 }  // namespace rigflex::io

@@ -14,6 +14,7 @@ struct ModelFile {
   std::string name;  // model.name, or the file stem
 };
 
+// The file in the format its extension names (io/model_formats.hpp).
 ModelFile read_model(const std::filesystem::path& file);
 // `source` names the text in errors.
 ModelFile parse_model(const std::string& yaml_text, const std::string& source);

@@ -110,6 +110,88 @@ linalg::EigenResult fixed_interface_modes(const linalg::SpMat& Kii, const linalg
   }
 }
 
+// Where each free DOF goes: boundary DOF k at -k - 1, interior DOFs numbered
+// in order; `interior` maps back.
+struct DofPartition {
+  std::vector<Eigen::Index> position;
+  std::vector<Eigen::Index> interior;  // interior index -> free DOF
+};
+
+DofPartition partition_dofs(Eigen::Index n, const std::vector<Eigen::Index>& boundary) {
+  const auto nb = static_cast<Eigen::Index>(boundary.size());
+  DofPartition p;
+  p.position.assign(static_cast<size_t>(n), 0);
+  for (Eigen::Index k = 0; k < nb; ++k) p.position[static_cast<size_t>(boundary[static_cast<size_t>(k)])] = -k - 1;
+  p.interior.reserve(static_cast<size_t>(n - nb));
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (p.position[static_cast<size_t>(j)] >= 0) {
+      p.position[static_cast<size_t>(j)] = static_cast<Eigen::Index>(p.interior.size());
+      p.interior.push_back(j);
+    }
+  }
+  return p;
+}
+
+// Everything is boundary: the reduction is a reordering.
+ReducedMatrices boundary_only(const linalg::SpMat& K, const linalg::SpMat& M, const std::vector<Eigen::Index>& boundary,
+                              bool keep_basis) {
+  const auto nb = static_cast<Eigen::Index>(boundary.size());
+  ReducedMatrices out;
+  Eigen::MatrixXd Kd(K), Md(M);
+  out.K.resize(nb, nb);
+  out.M.resize(nb, nb);
+  for (Eigen::Index r = 0; r < nb; ++r)
+    for (Eigen::Index c = 0; c < nb; ++c) {
+      out.K(r, c) = Kd(boundary[size_t(r)], boundary[size_t(c)]);
+      out.M(r, c) = Md(boundary[size_t(r)], boundary[size_t(c)]);
+    }
+  if (keep_basis) {
+    out.basis = Eigen::MatrixXd::Zero(K.rows(), nb);
+    for (Eigen::Index k = 0; k < nb; ++k) out.basis(boundary[size_t(k)], k) = 1.0;
+  }
+  out.ok = true;
+  return out;
+}
+
+// The reduced matrices on the basis T = [I 0; Psi Phi] (boundary, then the
+// fixed-interface modes, whose eigenvalues are in out.mode_eigenvalues).
+void project(const Blocks& Kb, const Blocks& Mb, const Eigen::MatrixXd& Psi, const Eigen::MatrixXd& Phi,
+             ReducedMatrices& out) {
+  const Eigen::Index nb = Psi.cols(), nm = Phi.cols();
+  // K_r = [K_bb + K_bi Psi, 0; 0, Omega^2].
+  out.K = Eigen::MatrixXd::Zero(nb + nm, nb + nm);
+  out.K.topLeftCorner(nb, nb) = symmetric_part(Kb.bb + Kb.ib.transpose() * Psi);
+  for (Eigen::Index k = 0; k < nm; ++k) out.K(nb + k, nb + k) = out.mode_eigenvalues(k);
+  // M_r = T' M T, blockwise with the sparse M_ii.
+  const Eigen::MatrixXd MiiPsi = Mb.ii * Psi;
+  const Eigen::MatrixXd MibPsi = Mb.ib.transpose() * Psi;  // M_bi Psi
+  out.M.resize(nb + nm, nb + nm);
+  out.M.topLeftCorner(nb, nb) = symmetric_part(Mb.bb + MibPsi + MibPsi.transpose() + Psi.transpose() * MiiPsi);
+  if (nm > 0) {
+    const Eigen::MatrixXd MiiPhi = Mb.ii * Phi;
+    const Eigen::MatrixXd Mbq = Mb.ib.transpose() * Phi + MiiPsi.transpose() * Phi;
+    out.M.topRightCorner(nb, nm) = Mbq;
+    out.M.bottomLeftCorner(nm, nb) = Mbq.transpose();
+    out.M.bottomRightCorner(nm, nm) = symmetric_part(Phi.transpose() * MiiPhi);
+  }
+}
+
+// T in the free DOFs' order.
+Eigen::MatrixXd basis_of(Eigen::Index n, const std::vector<Eigen::Index>& boundary,
+                         const std::vector<Eigen::Index>& interior, const Eigen::MatrixXd& Psi,
+                         const Eigen::MatrixXd& Phi) {
+  const auto nb = static_cast<Eigen::Index>(boundary.size());
+  const Eigen::Index nm = Phi.cols();
+  Eigen::MatrixXd basis = Eigen::MatrixXd::Zero(n, nb + nm);
+  for (Eigen::Index k = 0; k < nb; ++k) basis(boundary[static_cast<size_t>(k)], k) = 1.0;
+  for (Eigen::Index r = 0; r < static_cast<Eigen::Index>(interior.size()); ++r) {
+    const Eigen::Index row = interior[static_cast<size_t>(r)];
+    basis.row(row).head(nb) = Psi.row(r);
+    if (nm > 0) basis.row(row).tail(nm) = Phi.row(r);
+  }
+  return basis;
+}
+
 }  // namespace
 
 void ComponentModeOptions::validate(Eigen::Index interior_dofs) const {
@@ -145,35 +227,10 @@ ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
   ReducedMatrices out;
   auto& stats = out.statistics;
   auto t0 = Clock::now();
-  std::vector<Eigen::Index> position(static_cast<size_t>(n), 0);
-  for (Eigen::Index k = 0; k < nb; ++k) position[static_cast<size_t>(boundary[static_cast<size_t>(k)])] = -k - 1;
-  std::vector<Eigen::Index> interior;  // interior index -> free DOF
-  interior.reserve(static_cast<size_t>(ni));
-  for (Eigen::Index j = 0; j < n; ++j) {
-    if (position[static_cast<size_t>(j)] >= 0) {
-      position[static_cast<size_t>(j)] = static_cast<Eigen::Index>(interior.size());
-      interior.push_back(j);
-    }
-  }
-  if (ni == 0) {
-    // Everything is boundary: the reduction is a reordering.
-    Eigen::MatrixXd Kd(K), Md(M);
-    out.K.resize(nb, nb);
-    out.M.resize(nb, nb);
-    for (Eigen::Index r = 0; r < nb; ++r)
-      for (Eigen::Index c = 0; c < nb; ++c) {
-        out.K(r, c) = Kd(boundary[size_t(r)], boundary[size_t(c)]);
-        out.M(r, c) = Md(boundary[size_t(r)], boundary[size_t(c)]);
-      }
-    if (options.keep_basis) {
-      out.basis = Eigen::MatrixXd::Zero(n, nb);
-      for (Eigen::Index k = 0; k < nb; ++k) out.basis(boundary[size_t(k)], k) = 1.0;
-    }
-    out.ok = true;
-    return out;
-  }
-  Blocks Kb = partition(K, position, ni, nb);
-  Blocks Mb = partition(M, position, ni, nb);
+  const DofPartition dofs = partition_dofs(n, boundary);
+  if (ni == 0) return boundary_only(K, M, boundary, options.keep_basis);
+  Blocks Kb = partition(K, dofs.position, ni, nb);
+  Blocks Mb = partition(M, dofs.position, ni, nb);
   stats.partition_seconds = seconds_since(t0);
 
   t0 = Clock::now();
@@ -182,7 +239,7 @@ ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
   stats.factor_seconds = seconds_since(t0);
   stats.factor_bytes = factor.statistics().factor_bytes;
   if (!status.ok || status.min_relative_pivot < kSingularPivot) {
-    for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(interior[static_cast<size_t>(d)]);
+    for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(dofs.interior[static_cast<size_t>(d)]);
     out.message = "the interior stiffness K_ii is singular with the interface DOFs held: the interface does not "
                   "hold the frame statically (" + std::to_string(out.mechanism_dofs.size()) + " DOFs move freely)";
     return out;
@@ -208,36 +265,10 @@ ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
     Phi = std::move(out.modes_result.vectors);  // moved into the basis below; the result keeps its checks
     out.modes_result.vectors.resize(0, 0);
   }
-  const Eigen::Index nm = Phi.cols();
-
   t0 = Clock::now();
-  // K_r = [K_bb + K_bi Psi, 0; 0, Omega^2].
-  out.K = Eigen::MatrixXd::Zero(nb + nm, nb + nm);
-  out.K.topLeftCorner(nb, nb) = symmetric_part(Kb.bb + Kb.ib.transpose() * Psi);
-  for (Eigen::Index k = 0; k < nm; ++k) out.K(nb + k, nb + k) = out.mode_eigenvalues(k);
-  // M_r = T' M T, blockwise with the sparse M_ii.
-  const Eigen::MatrixXd MiiPsi = Mb.ii * Psi;
-  const Eigen::MatrixXd MibPsi = Mb.ib.transpose() * Psi;  // M_bi Psi
-  out.M.resize(nb + nm, nb + nm);
-  out.M.topLeftCorner(nb, nb) = symmetric_part(Mb.bb + MibPsi + MibPsi.transpose() + Psi.transpose() * MiiPsi);
-  if (nm > 0) {
-    const Eigen::MatrixXd MiiPhi = Mb.ii * Phi;
-    const Eigen::MatrixXd Mbq = Mb.ib.transpose() * Phi + MiiPsi.transpose() * Phi;
-    out.M.topRightCorner(nb, nm) = Mbq;
-    out.M.bottomLeftCorner(nm, nb) = Mbq.transpose();
-    out.M.bottomRightCorner(nm, nm) = symmetric_part(Phi.transpose() * MiiPhi);
-  }
+  project(Kb, Mb, Psi, Phi, out);
   stats.projection_seconds = seconds_since(t0);
-
-  if (options.keep_basis) {
-    out.basis = Eigen::MatrixXd::Zero(n, nb + nm);
-    for (Eigen::Index k = 0; k < nb; ++k) out.basis(boundary[static_cast<size_t>(k)], k) = 1.0;
-    for (Eigen::Index r = 0; r < ni; ++r) {
-      const Eigen::Index row = interior[static_cast<size_t>(r)];
-      out.basis.row(row).head(nb) = Psi.row(r);
-      if (nm > 0) out.basis.row(row).tail(nm) = Phi.row(r);
-    }
-  }
+  if (options.keep_basis) out.basis = basis_of(n, boundary, dofs.interior, Psi, Phi);
   out.ok = true;
   return out;
 }

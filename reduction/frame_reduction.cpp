@@ -195,6 +195,87 @@ void FrameReductionOptions::validate() const {
   c.validate(std::numeric_limits<Eigen::Index>::max());
 }
 
+namespace {
+
+// Rayleigh damping from the full model's elastic modes o.zeta_modes, the
+// damping matrix (rigid motions of a free frame left undamped) and the
+// state-space form.
+void add_damping(const FullModes& full, const FrameReductionOptions& o, const Eigen::MatrixXd& rigid, ReducedFrame& r) {
+  const int elastic = static_cast<int>(full.result.eigenvalues.size()) - full.rigid;
+  for (int m : o.zeta_modes) {
+    if (m > elastic) {
+      throw std::invalid_argument("zeta modes: elastic mode " + std::to_string(m) + " does not exist; the model has " +
+                                  std::to_string(elastic) + " elastic modes");
+    }
+  }
+  std::array<double, 2> omega{};
+  for (int k = 0; k < 2; ++k) {
+    omega[k] = std::sqrt(full.result.eigenvalues(full.rigid + o.zeta_modes[k] - 1));
+  }
+  r.damping = rayleigh_coefficients(o.zeta_modes, omega, {o.zeta, o.zeta});
+  const bool floating_free = r.support == FrameSupport::free;
+  r.C = rayleigh_damping_matrix(r.K, r.M, r.damping, floating_free ? rigid : Eigen::MatrixXd());
+  r.state_space = state_space_form(r.K, r.M, r.C, r.interface_dof_count());
+}
+
+// The reduction against the full model: frequencies and MAC, damping
+// ratios, rigid-body modes, mass properties and static exactness at the
+// interface.
+ReductionChecks reduction_checks(const fe::Model& model, const fe::AssembledSystem& sys,
+                                 const std::vector<Eigen::Index>& boundary, const FullModes& full,
+                                 const Eigen::MatrixXd& basis, const Eigen::MatrixXd& rigid, const ReducedFrame& r) {
+  const bool floating_free = r.support == FrameSupport::free;
+  ReductionChecks c;
+  const double scale_r = r.K.trace() / r.M.trace();
+  const linalg::EigenResult reduced =
+      linalg::solve_dense(r.K, r.M, static_cast<int>(r.K.rows()), -kRigidFraction * std::max(scale_r, 1.0));
+  const double rigid_limit_r = kRigidFraction * scale_r;
+  c.reduced_frequencies_hz = reduced.frequencies_hz();
+  c.damping_ratios.resize(reduced.eigenvalues.size());
+  for (Eigen::Index k = 0; k < reduced.eigenvalues.size(); ++k) {
+    const double lk = reduced.eigenvalues(k);
+    if (lk < rigid_limit_r) {
+      ++c.rigid_body_modes_reduced;
+      c.damping_ratios(k) = 0.0;
+    } else {
+      const Eigen::VectorXd& v = reduced.vectors.col(k);
+      c.damping_ratios(k) = v.dot(r.C * v) / (2 * std::sqrt(lk));
+    }
+  }
+  c.rigid_body_modes_full = full.rigid;
+  const Eigen::MatrixXd expanded = basis * reduced.vectors;
+  frequency_checks(full, reduced, expanded, rigid_limit_r, c);
+
+  c.mass_full = fe::mass_properties(model);
+  const Eigen::Matrix<double, 6, 6> Mrb = rigid.transpose() * r.M * rigid;
+  c.mass_reduced = fe::mass_properties_from_rigid_mass(Mrb);
+  c.mass_comparable = floating_free;
+  if (floating_free) {
+    const double knorm = r.K.cwiseAbs().colwise().sum().maxCoeff();
+    for (Eigen::Index k = 0; k < 6; ++k) {
+      const double rn = rigid.col(k).norm();
+      c.rigid_body_residual = std::max(c.rigid_body_residual, (r.K * rigid.col(k)).norm() / (knorm * rn));
+    }
+  }
+
+  // Static exactness: unit loads at the interface, full vs reduced; a
+  // floating frame is held isostatically at six interface DOFs.
+  std::vector<Eigen::Index> held_rows;
+  if (floating_free) {
+    held_rows = isostatic_rows(rigid.topRows(r.interface_dof_count()));
+    for (Eigen::Index h : held_rows) c.static_support.push_back(r.interface_dofs[static_cast<size_t>(h)]);
+  }
+  std::vector<Eigen::Index> held_full, reduced_boundary;
+  for (Eigen::Index h : held_rows) held_full.push_back(boundary[static_cast<size_t>(h)]);
+  for (Eigen::Index k = 0; k < r.interface_dof_count(); ++k) reduced_boundary.push_back(k);
+  const Eigen::MatrixXd Gf = full_interface_flexibility(sys.K, boundary, held_full);
+  const Eigen::MatrixXd Gr = reduced_interface_flexibility(r.K, reduced_boundary, held_rows);
+  c.static_flexibility_error = (Gr - Gf).cwiseAbs().maxCoeff() / Gf.cwiseAbs().maxCoeff();
+  return c;
+}
+
+}  // namespace
+
 ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o) {
   o.validate();
   ReducedFrame r;
@@ -231,70 +312,10 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
 
   report(o, "full-model modes for damping and checks");
   const FullModes full = full_model_modes(sys, r.support, o);
-  const int elastic = static_cast<int>(full.result.eigenvalues.size()) - full.rigid;
-  for (int m : o.zeta_modes) {
-    if (m > elastic) {
-      throw std::invalid_argument("zeta modes: elastic mode " + std::to_string(m) + " does not exist; the model has " +
-                                  std::to_string(elastic) + " elastic modes");
-    }
-  }
-  std::array<double, 2> omega{};
-  for (int k = 0; k < 2; ++k) {
-    omega[k] = std::sqrt(full.result.eigenvalues(full.rigid + o.zeta_modes[k] - 1));
-  }
-  r.damping = rayleigh_coefficients(o.zeta_modes, omega, {o.zeta, o.zeta});
   const Eigen::MatrixXd rigid = interface_rigid_motions(r.interface_nodes, r.interface_dofs, r.K.rows());
-  const bool floating_free = r.support == FrameSupport::free;
-  r.C = rayleigh_damping_matrix(r.K, r.M, r.damping, floating_free ? rigid : Eigen::MatrixXd());
-  r.state_space = state_space_form(r.K, r.M, r.C, r.interface_dof_count());
-
+  add_damping(full, o, rigid, r);
   report(o, "checks");
-  ReductionChecks& c = r.checks;
-  const double scale_r = r.K.trace() / r.M.trace();
-  const linalg::EigenResult reduced =
-      linalg::solve_dense(r.K, r.M, static_cast<int>(r.K.rows()), -kRigidFraction * std::max(scale_r, 1.0));
-  const double rigid_limit_r = kRigidFraction * scale_r;
-  c.reduced_frequencies_hz = reduced.frequencies_hz();
-  c.damping_ratios.resize(reduced.eigenvalues.size());
-  for (Eigen::Index k = 0; k < reduced.eigenvalues.size(); ++k) {
-    const double lk = reduced.eigenvalues(k);
-    if (lk < rigid_limit_r) {
-      ++c.rigid_body_modes_reduced;
-      c.damping_ratios(k) = 0.0;
-    } else {
-      const Eigen::VectorXd& v = reduced.vectors.col(k);
-      c.damping_ratios(k) = v.dot(r.C * v) / (2 * std::sqrt(lk));
-    }
-  }
-  c.rigid_body_modes_full = full.rigid;
-  const Eigen::MatrixXd expanded = red.basis * reduced.vectors;
-  frequency_checks(full, reduced, expanded, rigid_limit_r, c);
-
-  c.mass_full = fe::mass_properties(model);
-  const Eigen::Matrix<double, 6, 6> Mrb = rigid.transpose() * r.M * rigid;
-  c.mass_reduced = fe::mass_properties_from_rigid_mass(Mrb);
-  c.mass_comparable = floating_free;
-  if (floating_free) {
-    const double knorm = r.K.cwiseAbs().colwise().sum().maxCoeff();
-    for (Eigen::Index k = 0; k < 6; ++k) {
-      const double rn = rigid.col(k).norm();
-      c.rigid_body_residual = std::max(c.rigid_body_residual, (r.K * rigid.col(k)).norm() / (knorm * rn));
-    }
-  }
-
-  // Static exactness: unit loads at the interface, full vs reduced; a
-  // floating frame is held isostatically at six interface DOFs.
-  std::vector<Eigen::Index> held_rows;
-  if (floating_free) {
-    held_rows = isostatic_rows(rigid.topRows(r.interface_dof_count()));
-    for (Eigen::Index h : held_rows) c.static_support.push_back(r.interface_dofs[static_cast<size_t>(h)]);
-  }
-  std::vector<Eigen::Index> held_full, reduced_boundary;
-  for (Eigen::Index h : held_rows) held_full.push_back(boundary[static_cast<size_t>(h)]);
-  for (Eigen::Index k = 0; k < r.interface_dof_count(); ++k) reduced_boundary.push_back(k);
-  const Eigen::MatrixXd Gf = full_interface_flexibility(sys.K, boundary, held_full);
-  const Eigen::MatrixXd Gr = reduced_interface_flexibility(r.K, reduced_boundary, held_rows);
-  c.static_flexibility_error = (Gr - Gf).cwiseAbs().maxCoeff() / Gf.cwiseAbs().maxCoeff();
+  r.checks = reduction_checks(model, sys, boundary, full, red.basis, rigid, r);
   return r;
 }
 

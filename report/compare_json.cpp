@@ -54,35 +54,19 @@ Json identified_json(const diagnose::ModelComparison& c, const CompareContext& x
   return j;
 }
 
-}  // namespace
-
-Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
-  Json j;
-  j["rig"] = x.rig;
-  j["model"] = x.model_label;
-  j["model_effects"] = x.model_effects;
-  j["channels"] = c.channels;
-  j["overall_nrmse"] = finite_or_null(c.overall_nrmse);
-  j["force_nrmse"] = finite_or_null(c.force_nrmse);
-  j["angle_nrmse"] = finite_or_null(c.angle_nrmse);
-  j["nrmse"] = per_channel(c.channels, c.nrmse);
-  j["raw"] = {{"overall_nrmse", finite_or_null(c.raw_overall_nrmse)}, {"force_nrmse", finite_or_null(c.raw_force_nrmse)},
-              {"nrmse", per_channel(c.channels, c.raw_nrmse)}};
-  j["swing_band"] = {{"cutoff_hz", c.histories.front().target.band.cutoff_hz},
-                     {"kernel_s", static_cast<double>(c.histories.front().target.band.kernel.size()) *
-                                      c.histories.front().target.band.step_s}};
-  j["warnings"] = c.warnings;
+// Per history: errors, the fitted swing and elastic states, noise.
+Json histories_json(const std::vector<diagnose::HistoryComparison>& histories, const std::vector<std::string>& channels) {
   Json hs = Json::array();
-  for (const auto& h : c.histories) {
+  for (const auto& h : histories) {
     Json o;
     o["source"] = h.source;
     o["samples"] = h.t().size();
     o["sample_interval_s"] = h.target.record.step_s;
-    o["nrmse"] = per_channel(c.channels, h.nrmse);
+    o["nrmse"] = per_channel(channels, h.nrmse);
     const Eigen::Index n = h.nrmse.size() / 3;
     o["overall_nrmse"] = finite_or_null(diagnose::rms_of(h.nrmse, 0, h.nrmse.size()));
     o["force_nrmse"] = finite_or_null(diagnose::rms_of(h.nrmse, 0, n));
-    o["raw_nrmse"] = per_channel(c.channels, h.raw_nrmse);
+    o["raw_nrmse"] = per_channel(channels, h.raw_nrmse);
     o["fit_window_nrmse"] = finite_or_null(h.fit_window_nrmse);
     Json el = Json::array();
     for (Eigen::Index k = 0; k < h.elastic.amplitude.size(); ++k) {
@@ -92,25 +76,27 @@ Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
     o["swing_state"] = state_json(h.fit.state);
     o["fit"] = {{"iterations", h.fit.iterations}, {"converged", h.fit.converged},
                 {"band_residual_to_noise", finite_or_null(h.fit.whitened_rms)}};
-    o["noise"] = per_channel(c.channels, h.target.sigma);
+    o["noise"] = per_channel(channels, h.target.sigma);
     hs.push_back(o);
   }
-  j["histories"] = hs;
+  return hs;
+}
 
-  const diagnose::ResidualAnalysis& a = c.analysis;
+// Where the model fails: the residual analysis.
+Json where_it_fails_json(const diagnose::ResidualAnalysis& a, const std::vector<std::string>& channels) {
   Json w;
-  w["noise"] = per_channel(c.channels, a.noise);
-  w["residual_to_noise"] = per_channel(c.channels, a.noise_ratio);
-  w["channel_share"] = per_channel(c.channels, a.channel_share);
-  w["static_offset"] = per_channel(c.channels, a.static_offset);
-  w["static_offset_in_noise"] = per_channel(c.channels, a.offset_in_noise);
-  w["lag1_autocorrelation"] = per_channel(c.channels, a.lag1);
+  w["noise"] = per_channel(channels, a.noise);
+  w["residual_to_noise"] = per_channel(channels, a.noise_ratio);
+  w["channel_share"] = per_channel(channels, a.channel_share);
+  w["static_offset"] = per_channel(channels, a.static_offset);
+  w["static_offset_in_noise"] = per_channel(channels, a.offset_in_noise);
+  w["lag1_autocorrelation"] = per_channel(channels, a.lag1);
   w["trend"] = {{"t_s", array(a.trend_t)}, {"overall_nrmse", array(a.trend_nrmse)},
                 {"slope_per_s", finite_or_null(a.trend_slope)}};
   Json windows = Json::array();
-  for (const auto& x2 : a.windows) {
-    windows.push_back({{"history", x2.history + 1}, {"t_start_s", x2.t_start}, {"t_end_s", x2.t_end},
-                       {"share", finite_or_null(x2.share)}});
+  for (const auto& win : a.windows) {
+    windows.push_back({{"history", win.history + 1}, {"t_start_s", win.t_start}, {"t_end_s", win.t_end},
+                       {"share", finite_or_null(win.share)}});
   }
   w["windows"] = windows;
   Json decay = Json::array();
@@ -122,7 +108,7 @@ Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
   w["extra_decay_rate_per_s"] = finite_or_null(a.extra_decay_rate);
   Json corr = Json::object();
   for (const auto& s : a.correlations) {
-    corr[s.state] = {{"largest", finite_or_null(s.largest)}, {"channel", s.channel}, {"per_channel", per_channel(c.channels, s.per_channel)}};
+    corr[s.state] = {{"largest", finite_or_null(s.largest)}, {"channel", s.channel}, {"per_channel", per_channel(channels, s.per_channel)}};
   }
   w["state_correlation"] = corr;
   Json modes = Json::array();
@@ -147,7 +133,29 @@ Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
                     {"measured_force", array(sp.measured_force.head(bins))},
                     {"measured_angle", array(sp.measured_angle.head(bins))}};
   }
-  j["where_it_fails"] = w;
+  return w;
+}
+
+}  // namespace
+
+Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
+  Json j;
+  j["rig"] = x.rig;
+  j["model"] = x.model_label;
+  j["model_effects"] = x.model_effects;
+  j["channels"] = c.channels;
+  j["overall_nrmse"] = finite_or_null(c.overall_nrmse);
+  j["force_nrmse"] = finite_or_null(c.force_nrmse);
+  j["angle_nrmse"] = finite_or_null(c.angle_nrmse);
+  j["nrmse"] = per_channel(c.channels, c.nrmse);
+  j["raw"] = {{"overall_nrmse", finite_or_null(c.raw_overall_nrmse)}, {"force_nrmse", finite_or_null(c.raw_force_nrmse)},
+              {"nrmse", per_channel(c.channels, c.raw_nrmse)}};
+  j["swing_band"] = {{"cutoff_hz", c.histories.front().target.band.cutoff_hz},
+                     {"kernel_s", static_cast<double>(c.histories.front().target.band.kernel.size()) *
+                                      c.histories.front().target.band.step_s}};
+  j["warnings"] = c.warnings;
+  j["histories"] = histories_json(c.histories, c.channels);
+  j["where_it_fails"] = where_it_fails_json(c.analysis, c.channels);
   j["identified"] = identified_json(c, x);
   return j;
 }

@@ -112,4 +112,14 @@ std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, const 
   return entries;
 }
 
+nlohmann::ordered_json study_versions_json(const std::vector<StudyEntry>& entries, const std::string& current_fingerprint) {
+  nlohmann::ordered_json versions = nlohmann::ordered_json::array();
+  for (const auto& x : entries) {
+    versions.push_back({{"version", x.version}, {"label", x.label}, {"overall_nrmse", x.overall_nrmse},
+                        {"force_nrmse", x.force_nrmse}, {"angle_nrmse", x.angle_nrmse},
+                        {"current", x.fingerprint == current_fingerprint}});
+  }
+  return versions;
+}
+
 }  // namespace rigflex::report

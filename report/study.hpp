@@ -7,6 +7,7 @@
 // Entries keep their first-seen order, so each new compare shows its error
 // next to the earlier versions'.
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <map>
 #include <optional>
 #include <string>
@@ -34,5 +35,9 @@ std::vector<StudyEntry> study_with(const std::filesystem::path& dir, const Study
 
 // study_with, written back atomically; returns the entries.
 std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, const StudyEntry& entry);
+
+// compare.json's "study": each version's label and errors, the one with
+// `current_fingerprint` marked current.
+nlohmann::ordered_json study_versions_json(const std::vector<StudyEntry>& entries, const std::string& current_fingerprint);
 
 }  // namespace rigflex::report

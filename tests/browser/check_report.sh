@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Opens an HTML report of rigflex (io/html_report) in headless Chromium and
+# Opens an HTML report of rigflex (report/html_report) in headless Chromium and
 # checks that it works: no errors in the page, every plot drawn, and a
 # screenshot that is not blank. See docs/reports.md.
 #   tests/browser/check_report.sh REPORT.html EXPECTED_PLOTS

@@ -1,4 +1,4 @@
-// Writes a command report (io/reports.hpp) from the synthetic results of
+// Writes a command report (report/reports.hpp) from the synthetic results of
 // tests/support/synthetic_reports.hpp, for the browser test
 // (tests/browser/check_report.sh):
 //   make_compare_report compare OUT.html          9 plots: 2 histories x 9 channels x 7500 samples

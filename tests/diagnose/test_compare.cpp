@@ -1,4 +1,4 @@
-// Model against measurement (rig/compare.hpp, rig/swing_band.hpp): noise
+// Model against measurement (diagnose/history_comparison.hpp, diagnose/swing_band.hpp): noise
 // estimate, swing band, swing-state fit, record checks.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Diagnosis pieces (rig/diagnosis.hpp, rig/joint_compliance.hpp,
-// rig/effect_candidates.hpp) on small cases; the catalogue-wide runs are
+// Diagnosis pieces (diagnose/diagnosis.hpp, rig/joint_compliance.hpp,
+// diagnose/effect_candidates.hpp) on small cases; the catalogue-wide runs are
 // in tests/acceptance/test_diagnosis_acceptance.cpp.
 #include <gtest/gtest.h>
 

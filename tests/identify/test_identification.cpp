@@ -1,4 +1,4 @@
-// The identifier (rig/identification.hpp) on data with known answers:
+// The identifier (identify/identification.hpp) on data with known answers:
 // analytic rigid-body motion with Newton-Euler loads (exact to rounding),
 // the point fit, tare subtraction, unobservable records, the rod-mass
 // accounting at static equilibrium; virtual measurements of the example rigs

@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include "io/input_error.hpp"
+#include "io/model_formats.hpp"
 #include "io/model_reader.hpp"
+#include "support/temp_files.hpp"
 #include "support/text_edits.hpp"
 
 namespace rigflex {
@@ -47,6 +49,28 @@ TEST(ModelReader, ReadsAValidModel) {
   EXPECT_EQ(f.model.beams.size(), 4u);
   EXPECT_EQ(f.model.point_masses.size(), 1u);
   EXPECT_EQ(f.model.supports.size(), 1u);
+}
+
+// read_model picks the format by extension, case-insensitively; an extension
+// no format claims is read as the YAML model (the first format).
+TEST(ModelFormats, ChosenByExtensionWithYamlAsDefault) {
+  const auto& formats = io::model_formats();
+  ASSERT_FALSE(formats.empty());
+  EXPECT_EQ(&io::model_format_for("frame.yaml"), &formats.front());
+  EXPECT_EQ(&io::model_format_for("FRAME.YML"), &formats.front());
+  EXPECT_EQ(&io::model_format_for("frame.txt"), &formats.front());
+  for (const auto& f : formats) {
+    for (const auto& ext : f.extensions) EXPECT_EQ(&io::model_format_for("a" + ext), &f) << f.name << " " << ext;
+  }
+  test::TempDir dir("rigflex-model-formats");
+  test::write_text(dir.path() / "frame.Yml", kValid);
+  EXPECT_EQ(io::read_model(dir.path() / "frame.Yml").model.beams.size(), 4u);
+  try {
+    io::read_model(dir.path() / "absent.yaml");
+    ADD_FAILURE() << "no error for a missing file";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), (dir.path() / "absent.yaml").string());
+  }
 }
 
 TEST(ModelReader, MalformedYamlNamesTheLine) {

@@ -1,4 +1,4 @@
-// The command reports (io/reports.hpp) from small synthetic results: the
+// The command reports (report/reports.hpp) from small synthetic results: the
 // plots each report promises, the key text, robustness to missing parts and
 // non-finite values, and errors only for data that contradict themselves.
 // (Rendering in a browser: tests/browser/make_compare_report.cpp.)

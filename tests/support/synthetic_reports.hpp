@@ -1,6 +1,6 @@
 #pragma once
 // Small synthetic results of a 3-rod rig for the command reports
-// (io/reports.hpp): model comparisons with histories and residual analysis,
+// (report/reports.hpp): model comparisons with histories and residual analysis,
 // diagnoses, identification reports and sweep points. Shared by the report
 // tests (tests/io/test_reports.cpp, whose assertions rely on these values)
 // and the browser check (tests/browser/make_compare_report.cpp, which asks

@@ -1,6 +1,6 @@
 // Independent cross-check of rigflex's elements, assembly and eigen solver
 // against CalculiX (ccx 2.20): the model is written as a ccx .inp (beams
-// B32R, MITC4 shells S4, 8-node shells S8R; io/calculix_writer.hpp), ccx
+// B32R, MITC4 shells S4, 8-node shells S8R; verification/calculix.hpp), ccx
 // runs *FREQUENCY, and the lowest frequencies are compared mode by mode.
 //
 // ccx is not a beam/shell code: it expands every beam into C3D20R bricks
@@ -41,7 +41,7 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix_writer.hpp"
+#include "verification/calculix.hpp"
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "support/frame_models.hpp"

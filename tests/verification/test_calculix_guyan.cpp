@@ -28,7 +28,7 @@
 
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix_writer.hpp"
+#include "verification/calculix.hpp"
 #include "reduction/frame_reduction.hpp"
 #include "support/frame_models.hpp"
 
@@ -214,7 +214,7 @@ TEST(CalculixMatrixStorage, ReproducesCcxsOwnEigenvalues) {
   ASSERT_EQ(f.eigenvalues.size(), 6u);
   EXPECT_EQ(c.K.rows(), f.equations) << "the stored system is the one ccx solves";
 
-  // What the DOF map says (see io/calculix_writer.hpp).
+  // What the DOF map says (see verification/calculix.hpp).
   for (int d = 1; d <= 3; ++d) {
     EXPECT_TRUE(c.row_of(ref, d).has_value()) << "a node outside the beams keeps its DOFs";
     EXPECT_TRUE(c.row_of(column.back(), d).has_value()) << "the corner is a knot";

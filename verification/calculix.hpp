@@ -47,7 +47,7 @@
 //                 beam and shell nodes in a coupling also get their rotations
 //                 tied, and a short, massless, free "knot anchor" beam so
 //                 that ccx gives them rotational DOFs at all (see
-//                 calculix_writer.cpp). *RIGID BODY is not used: in ccx 2.20
+//                 calculix_deck.cpp). *RIGID BODY is not used: in ccx 2.20
 //                 it ties only translations of beam and shell nodes, and
 //                 leaves the rotation about the line free when the nodes
 //                 are collinear (a single dependent). Only couplings
