@@ -70,6 +70,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "fe/model.hpp"
@@ -92,6 +93,15 @@ struct CalculixOptions {
 // std::invalid_argument (naming the entity) for model content that ccx 2.20
 // cannot express (see above).
 std::string calculix_input(const fe::Model& model, const CalculixOptions& opt);
+
+// The deck with the numbering it gave the model's nodes (rigflex id -> ccx
+// label); labels from first_free_node on are the writer's own nodes.
+struct CalculixDeck {
+  std::string text;
+  std::unordered_map<fe::NodeId, long> ccx_ids;
+  long first_free_node = 0;
+};
+CalculixDeck calculix_deck(const fe::Model& model, const CalculixOptions& opt);
 
 struct CalculixFrequencies {
   std::vector<double> eigenvalues;     // (rad/s)^2, as ccx prints them

@@ -58,7 +58,7 @@ class InputWriter {
     check_unsupported();
 
     out_.reserve(m_.nodes.size() * 80 + m_.shells.size() * 60 + 4096);
-    out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (io/calculix_writer.cpp).\n";
+    out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (verification/calculix_deck.cpp).\n";
     out_ += "** Beams are B32R, MITC4 shells S4, 8-node shells S8R; ccx expands them into\n";
     out_ += "** C3D20R / C3D8I solids internally.\n";
     if (!opt_.heading.empty()) out_ += "*HEADING\n" + opt_.heading + "\n";
@@ -513,8 +513,15 @@ void CalculixOptions::validate() const {
     throw std::invalid_argument("CalculixOptions::heading must be a single line");
 }
 
-std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) {
-  return InputWriter(model, opt).write();
+CalculixDeck calculix_deck(const fe::Model& model, const CalculixOptions& opt) {
+  InputWriter writer(model, opt);
+  CalculixDeck deck;
+  deck.text = writer.write();
+  deck.ccx_ids = writer.ccx_ids();
+  deck.first_free_node = writer.first_free_node();
+  return deck;
 }
+
+std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) { return calculix_deck(model, opt).text; }
 
 }  // namespace rigflex::verification

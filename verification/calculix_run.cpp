@@ -331,7 +331,7 @@ CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& w
   opt.modes = 1;
   opt.heading = "rigflex matrix export";
   opt.matrix_storage = true;
-  const std::string deck = calculix_input(model, opt);
+  const CalculixDeck deck = calculix_deck(model, opt);
 
   CalculixMatrices r;
   fs::create_directories(work_dir);
@@ -340,7 +340,7 @@ CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& w
   r.mass = work_dir / (run.job + ".mas");
   r.dof_file = work_dir / (run.job + ".dof");
   r.log = work_dir / (run.job + ".log");
-  io::write_text_atomically(r.input, deck);
+  io::write_text_atomically(r.input, deck.text);
   for (const fs::path& p : {r.stiffness, r.mass, r.dof_file}) {
     std::error_code ec;
     fs::remove(p, ec);  // never read stale matrices
@@ -359,8 +359,8 @@ CalculixMatrices run_calculix_matrices(const fe::Model& model, const fs::path& w
     if (!fs::exists(p)) throw failed("no " + p.filename().string() + " written");
 
   std::unordered_map<long, fe::NodeId> model_node;
-  for (const auto& [id, ccx] : writer.ccx_ids()) model_node.emplace(ccx, id);
-  const long first_generated = writer.first_free_node();
+  for (const auto& [id, ccx] : deck.ccx_ids) model_node.emplace(ccx, id);
+  const long first_generated = deck.first_free_node;
   for (const auto& [node, direction] : parse_calculix_dofs(read_text(r.dof_file), r.dof_file.string())) {
     CalculixDof d;
     d.ccx_node = node;
