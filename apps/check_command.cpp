@@ -77,7 +77,7 @@ void print(const rig::CheckResult& r) {
 int run(const CheckArgs& a) {
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "check: frame reduction: %s\n", s.c_str()); };
-  const rig::RigModel model = io::read_rig(a.rig, ro);
+  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   const rig::CheckResult r = [&] {
     try {
       return rig::design_check(model);

@@ -115,7 +115,7 @@ std::vector<identify::IdentificationResult> identify_all(const identify::Identif
 int run(const IdentifyArgs& a) {
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "identify: frame reduction: %s\n", s.c_str()); };
-  rig::RigModel model = io::read_rig(a.rig, ro);
+  rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   for (const auto& dir : a.reduced) use_reduced(model, dir);
   if (a.mass > 0) model.body.mass = a.mass;
   const identify::IdentificationOptions options = options_from(a);

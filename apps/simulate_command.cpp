@@ -44,7 +44,7 @@ int run(const SimulateArgs& a) {
   const auto start = std::chrono::steady_clock::now();
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "simulate: frame reduction: %s\n", s.c_str()); };
-  const rig::RigModel model = io::read_rig(a.rig, ro);
+  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   const rig::RigSystem rig(model);
   rig::MeasurementOptions o;
   o.sets = a.sets;

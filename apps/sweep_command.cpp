@@ -39,7 +39,7 @@ identify::ScaleRange parse_range(const std::string& text, const std::string& opt
 }
 
 int run(const SweepArgs& a) {
-  const rig::RigModel model = io::read_rig(a.rig);
+  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig));
   identify::SweepOptions o;
   o.mass = parse_range(a.mass_scale, "--mass-scale");
   o.stiffness = parse_range(a.stiffness_scale, "--stiffness-scale");

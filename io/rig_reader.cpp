@@ -13,6 +13,7 @@
 #include "rig/effect.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
+#include "rig/rig_spec.hpp"
 #include "rig/joint_compliance.hpp"
 
 namespace rigflex::io {
@@ -23,7 +24,6 @@ using rig::Vec3;
 struct Reader {
   YamlContext ctx;
   std::filesystem::path base;
-  const RigReadOptions& options;
   int rods = 0;
   double mass = 0;  // the body's, for the joints of a frame given by its joint compliance
 
@@ -161,14 +161,21 @@ struct Reader {
     return o;
   }
 
-  // A flexible frame: a `rigflex reduce` export, or a frame model reduced here.
-  reduction::ReducedFrame frame(const YAML::Node& e, const std::string& key, reduction::FrameSupport support) const {
+  // A flexible frame as the file gives it: a `rigflex reduce` export, read,
+  // or a frame model read with the reduction asked for. Reduced and placed on
+  // the joints later, by rig::resolve_frames.
+  rig::FrameSource frame(const YAML::Node& e, const std::string& key, bool fixed) const {
+    rig::FrameSource s;
+    s.fixed = fixed;
+    s.matching = matching(e);
+    s.effect = {ctx.file(), YamlContext::line_of(e), key};
     const bool exported = static_cast<bool>(e["reduced"]);
     if (exported == static_cast<bool>(e["model"])) ctx.fail(e, key, "needs exactly one of 'reduced' or 'model'");
     if (exported) {
       const std::filesystem::path dir = base / ctx.text(e, "reduced");
       try {
-        return read_reduced_frame(dir);
+        s.reduced = read_reduced_frame(dir);
+        return s;
       } catch (const InputError&) {
         throw;
       } catch (const std::exception& x) {
@@ -178,8 +185,11 @@ struct Reader {
     const std::filesystem::path file = base / ctx.text(e, "model");
     // Named here: the model reader's own error would not say which rig key points at it.
     if (!std::filesystem::is_regular_file(file)) ctx.fail(e["model"], key + ".model", "no such file: " + file.string());
-    const ModelFile model = read_model(file);
-    reduction::FrameReductionOptions o;
+    ModelFile model = read_model(file);
+    s.model = std::move(model.model);
+    s.model_name = model.name;
+    s.model_key = {ctx.file(), YamlContext::line_of(e["model"]), key + ".model"};
+    reduction::FrameReductionOptions& o = s.reduction;
     o.interface_set = ctx.text(e, "interface");
     const std::string method = ctx.text_or(e, "method", "guyan");
     const auto m = reduction::parse_reduction_method(method);
@@ -187,20 +197,9 @@ struct Reader {
     o.method = *m;
     o.modes = ctx.integer_or(e, "modes", 0);
     o.cutoff_hz = ctx.optional_number(e, "cutoff");
-    o.support = support;
+    o.support = fixed ? reduction::FrameSupport::grounded : reduction::FrameSupport::free;
     o.zeta = ctx.number_or(e, "zeta", 0.02);
-    o.progress = options.progress;
-    try {
-      reduction::ReducedFrame f = reduction::reduce_frame(model.model, o);
-      f.name = model.name;
-      return f;
-    } catch (const fe::ModelError& x) {
-      ctx.fail(e["model"], key + ".model", x.what());
-    } catch (const std::invalid_argument& x) {
-      ctx.fail(e, key, x.what());
-    } catch (const reduction::ReductionError& x) {
-      ctx.fail(e["model"], key + ".model", x.what());
-    }
+    return s;
   }
 
   rig::FrameMatching matching(const YAML::Node& e) const {
@@ -218,15 +217,9 @@ struct Reader {
     if ((name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility") && e["joint_compliance"]) {
       return joint_compliance_frame(name, e, g);
     }
-    if (name == "fixed_frame_flexibility") {
+    if (name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility") {
       ctx.expect_map(e, key, frame_keys);
-      const auto f = frame(e, key, reduction::FrameSupport::grounded);
-      return guarded(e, key, [&] { return std::make_shared<rig::FixedFrameFlexibility>(rig::fixed_frame_model(f, g, matching(e))); });
-    }
-    if (name == "carrying_frame_flexibility") {
-      ctx.expect_map(e, key, frame_keys);
-      const auto f = frame(e, key, reduction::FrameSupport::free);
-      return guarded(e, key, [&] { return std::make_shared<rig::CarryingFrameFlexibility>(rig::carrying_frame_model(f, g, matching(e))); });
+      return std::make_shared<rig::PendingFrame>(frame(e, key, name == "fixed_frame_flexibility"));
     }
     if (name == "rod_compliance") {
       ctx.expect_map(e, key, {"enabled", "stiffness", "youngs_modulus", "area"});
@@ -421,15 +414,15 @@ YAML::Node node_at(const YAML::Node& root, const std::string& path) {
 
 }  // namespace
 
-rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,
-                        const RigReadOptions& options) {
+rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& source,
+                            const std::filesystem::path& base) {
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::ParserException& e) {
     throw InputError(source, e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
   }
-  Reader r{YamlContext(source), base, options};
+  Reader r{YamlContext(source), base};
   const YamlContext& ctx = r.ctx;
   if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
   ctx.expect_map(root, "rig", {"name", "geometry", "body", "sensors", "release", "simulation", "effects"});
@@ -460,7 +453,20 @@ rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source,
     const YAML::Node at = node_at(root, field);
     throw InputError(source, YamlContext::line_of(at), field, colon == std::string::npos ? msg : msg.substr(colon + 2));
   }
-  return model;
+  return rig::RigSpec{std::move(model)};
+}
+
+rig::RigModel resolve_rig(const rig::RigSpec& spec, const RigReadOptions& options) {
+  try {
+    return rig::resolve_frames(spec, options.progress);
+  } catch (const rig::SpecError& e) {
+    throw InputError(e.where().file, e.where().line, e.where().key, e.reason());
+  }
+}
+
+rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,
+                        const RigReadOptions& options) {
+  return resolve_rig(parse_rig_spec(yaml_text, source, base), options);
 }
 
 InputError no_equilibrium_error(const std::filesystem::path& file, const rig::RigModel& model,
@@ -491,12 +497,16 @@ InputError no_equilibrium_error(const std::filesystem::path& file, const rig::Ri
   return InputError(file.string(), line, key, detail + ": " + advice);
 }
 
-rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& options) {
+rig::RigSpec read_rig_spec(const std::filesystem::path& file) {
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), 0, "", "cannot open the rig file");
   std::stringstream ss;
   ss << in.rdbuf();
-  return parse_rig(ss.str(), file.string(), file.parent_path(), options);
+  return parse_rig_spec(ss.str(), file.string(), file.parent_path());
+}
+
+rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& options) {
+  return resolve_rig(read_rig_spec(file), options);
 }
 
 void add_effects(rig::RigModel& model, const std::filesystem::path& file, const RigReadOptions& options) {
@@ -510,7 +520,7 @@ void add_effects(rig::RigModel& model, const std::filesystem::path& file, const 
   } catch (const YAML::ParserException& e) {
     throw InputError(file.string(), e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
   }
-  Reader r{YamlContext(file.string()), file.parent_path(), options};
+  Reader r{YamlContext(file.string()), file.parent_path()};
   if (!root.IsMap() || !root["effects"]) {
     throw InputError(file.string(), 1, "effects", "an effects file is a mapping with the one key 'effects'");
   }
@@ -518,6 +528,7 @@ void add_effects(rig::RigModel& model, const std::filesystem::path& file, const 
   r.rods = model.geometry.rod_count();
   r.mass = model.body.mass;
   r.effects(root["effects"], model);
+  model = resolve_rig(rig::RigSpec{std::move(model)}, options);
   try {
     model.validate();
   } catch (const std::invalid_argument& x) {

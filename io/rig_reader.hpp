@@ -1,16 +1,18 @@
 #pragma once
-// Reads a rig file (rig.yaml) into a rig::RigModel, strictly: the spec's
-// geometry block exactly, the body's mass properties record, sensors, release
-// protocol, integrator settings and effects under the spec's names. Errors
-// are InputErrors naming the file, line and key. Frames that an effect makes
-// flexible are read from `rigflex reduce` exports or reduced in-process from
-// a frame model. The format is documented in docs/rig.md.
+// Reads a rig file (rig.yaml), strictly: the spec's geometry block exactly,
+// the body's mass properties record, sensors, release protocol, integrator
+// settings and effects under the spec's names. Errors are InputErrors naming
+// the file, line and key. Reading is pure (rig/rig_spec.hpp): frames that an
+// effect makes flexible are read from `rigflex reduce` exports or as frame
+// models, and rig::resolve_frames reduces them and places them on the joints.
+// The format is documented in docs/rig.md.
 #include <filesystem>
 #include <functional>
 #include <string>
 
 #include "io/input_error.hpp"
 #include "rig/rig_model.hpp"
+#include "rig/rig_spec.hpp"
 
 namespace rigflex::io {
 
@@ -18,6 +20,15 @@ struct RigReadOptions {
   std::function<void(const std::string&)> progress;  // in-process reductions report here
 };
 
+// What the file says, frames not yet reduced.
+rig::RigSpec read_rig_spec(const std::filesystem::path& file);
+// `source` names the text in errors; relative paths inside resolve against `base`.
+rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& source,
+                            const std::filesystem::path& base);
+// rig::resolve_frames, its errors as the InputErrors of the rig file's keys.
+rig::RigModel resolve_rig(const rig::RigSpec& spec, const RigReadOptions& options = {});
+
+// read_rig_spec and resolve_rig in one.
 rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& options = {});
 // `source` names the text in errors; relative paths inside resolve against `base`.
 rig::RigModel parse_rig(const std::string& yaml_text, const std::string& source, const std::filesystem::path& base,

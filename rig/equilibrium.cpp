@@ -107,6 +107,17 @@ Step trust_region_step(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const
   return {s, predicted(s), true};
 }
 
+// Very stiff rods: a rod force k (|B - A| - L) carries a rounding error of
+// ~ k eps |B| that no step can remove; a search that stalls below a few
+// times that has found the equilibrium as well as doubles can tell.
+double rounding_floor(const RigSystem& rig) {
+  const auto& g = rig.assembly().geometry;
+  double reach = 0;
+  for (const auto& r : g.rods) reach = std::max(reach, r.lower.norm() + r.length);
+  return 16.0 * std::numeric_limits<double>::epsilon() * rig.rod_stiffness().maxCoeff() *
+         (g.reference_point.norm() + reach) / rig.suspended_weight();
+}
+
 }  // namespace
 
 // Error budget of the central differences, h the joint displacement of a
@@ -229,17 +240,7 @@ Equilibrium static_equilibrium(const RigSystem& rig, const Configuration& start,
   eq.configuration = x.c;
   eq.residual = x.residual;
   eq.converged = x.residual <= options.tolerance;
-  // Very stiff rods: a rod force k (|B - A| - L) carries a rounding error of
-  // ~ k eps |B| that no step can remove; a search that stalls below a few
-  // times that has found the equilibrium as well as doubles can tell.
-  if (!eq.converged && !stalled.empty()) {
-    const auto& g = rig.assembly().geometry;
-    double reach = 0;
-    for (const auto& r : g.rods) reach = std::max(reach, r.lower.norm() + r.length);
-    const double floor = 16.0 * std::numeric_limits<double>::epsilon() * rig.rod_stiffness().maxCoeff() *
-                         (g.reference_point.norm() + reach) / rig.suspended_weight();
-    eq.converged = x.residual <= floor;
-  }
+  if (!eq.converged && !stalled.empty()) eq.converged = x.residual <= rounding_floor(rig);
   const std::string after = " after " + std::to_string(eq.iterations) + " steps";
   eq.message = eq.converged ? "static equilibrium found in " + std::to_string(eq.iterations) + " steps"
                             : "no static equilibrium found: residual " + std::to_string(x.residual) +

@@ -2,11 +2,15 @@
 // issue 4 is refused with an InputError naming the file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "io/input_error.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/effect.hpp"
+#include "rig/effects.hpp"
+#include "rig/rig_spec.hpp"
+#include "rig/rig_system.hpp"
 #include "support/temp_files.hpp"
 #include "support/text_edits.hpp"
 
@@ -315,6 +319,68 @@ TEST(RigReader, EffectsFilesReplaceByName) {
   EXPECT_THROW(io::add_effects(m, dir.path() / "bad.yaml"), io::InputError);
 }
 
+
+
+// --- reading is pure: frames are reduced by rig::resolve_frames, a step of its own
+
+TEST(RigSpec, ReadingReducesNoFrameAndResolvingGivesWhatReadRigGives) {
+  const std::filesystem::path file = std::filesystem::path(RIGFLEX_SOURCE_DIR) / "examples/large-rig/rig.yaml";
+  const rig::RigSpec spec = io::read_rig_spec(file);
+  ASSERT_EQ(spec.pending_frames(), 1);  // the fixed frame, a frame model to reduce
+  const auto* pending = dynamic_cast<const rig::PendingFrame*>(spec.rig.effect("fixed_frame_flexibility"));
+  ASSERT_NE(pending, nullptr);
+  EXPECT_TRUE(pending->source().fixed);
+  EXPECT_FALSE(pending->source().reduced.has_value());
+  EXPECT_FALSE(pending->source().model.nodes.empty());
+  // A rig still holding a pending frame cannot be assembled.
+  EXPECT_THROW(rig::RigSystem{spec.rig}, std::logic_error);
+
+  std::vector<std::string> stages;
+  const rig::RigModel resolved = rig::resolve_frames(spec, [&](const std::string& s) { stages.push_back(s); });
+  EXPECT_FALSE(stages.empty());
+  EXPECT_EQ(rig::RigSpec{resolved}.pending_frames(), 0);
+  const rig::RigModel direct = io::read_rig(file);
+  ASSERT_EQ(resolved.effects.size(), direct.effects.size());
+  for (size_t i = 0; i < direct.effects.size(); ++i) EXPECT_STREQ(resolved.effects[i]->name(), direct.effects[i]->name());
+  const auto* a = dynamic_cast<const rig::FixedFrameFlexibility*>(resolved.effect("fixed_frame_flexibility"));
+  const auto* b = dynamic_cast<const rig::FixedFrameFlexibility*>(direct.effect("fixed_frame_flexibility"));
+  ASSERT_NE(a, nullptr);
+  ASSERT_NE(b, nullptr);
+  // The same reduction of the same model: bit for bit.
+  EXPECT_EQ(a->model().K, b->model().K);
+  EXPECT_EQ(a->model().M, b->model().M);
+  EXPECT_EQ(a->model().joint_row, b->model().joint_row);
+}
+
+TEST(RigSpec, AFrameThatCannotBeReducedIsNamedWhenResolved) {
+  test::TempDir dir("rigflex-rig-spec");
+  std::filesystem::copy_file(std::filesystem::path(RIGFLEX_SOURCE_DIR) / "examples/beam-frame/model.yaml",
+                             dir.path() / "frame.yaml");
+  const std::string text =
+      std::string(kValid) + "  fixed_frame_flexibility:\n    model: frame.yaml\n    interface: no_such_set\n";
+  const std::filesystem::path file = dir.path() / "rig.yaml";
+  test::write_text(file, text);
+  const rig::RigSpec spec = io::read_rig_spec(file);  // read: the set is looked up only when reducing
+  EXPECT_EQ(spec.pending_frames(), 1);
+  try {
+    rig::resolve_frames(spec);
+    ADD_FAILURE() << "no error for an interface set that does not exist";
+  } catch (const rig::SpecError& e) {
+    EXPECT_EQ(e.where().file, file.string());
+    EXPECT_EQ(e.where().line, line_of(text, "model: frame.yaml"));
+    EXPECT_EQ(e.where().key, "effects.fixed_frame_flexibility.model");
+    EXPECT_NE(e.reason().find("no_such_set"), std::string::npos) << e.what();
+  }
+  // read_rig reports it as the InputError it always was.
+  try {
+    io::read_rig(file);
+    ADD_FAILURE() << "no error from read_rig";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.line(), line_of(text, "model: frame.yaml"));
+    EXPECT_EQ(e.key(), "effects.fixed_frame_flexibility.model");
+    EXPECT_NE(e.reason().find("no_such_set"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rigflex
-
