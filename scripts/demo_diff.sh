@@ -6,23 +6,30 @@
 #   bash scripts/demo_diff.sh [BASE] [BUILD_DIR]
 # Files that record when or how fast a run went are compared with those
 # fields masked (see mask() below); all others exactly. Exit 0 when identical.
+# BASE_RIGFLEX=path/to/rigflex uses that binary as the base instead of
+# building BASE (a copy kept from before a change saves a build).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base=${1:-HEAD~1}
 build=${2:-build}
 work=$(mktemp -d)
 trap 'git worktree remove --force "$work/base" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
-git worktree add --detach "$work/base" "$base" >/dev/null
-if [ -d third_party/js/node_modules ]; then cp -r third_party/js/node_modules "$work/base/third_party/js/"; fi
-echo "demo_diff: building $base"
-cmake -S "$work/base" -B "$work/base-build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
-  -DRIGFLEX_BUILD_TESTS=OFF -DRIGFLEX_BUILD_BENCH=OFF >/dev/null
-cmake --build "$work/base-build" -j "${JOBS:-2}" --target rigflex >/dev/null
+if [ -n "${BASE_RIGFLEX:-}" ]; then
+  base_rigflex=$(realpath "$BASE_RIGFLEX")
+else
+  git worktree add --detach "$work/base" "$base" >/dev/null
+  if [ -d third_party/js/node_modules ]; then cp -r third_party/js/node_modules "$work/base/third_party/js/"; fi
+  echo "demo_diff: building $base"
+  cmake -S "$work/base" -B "$work/base-build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+    -DRIGFLEX_BUILD_TESTS=OFF -DRIGFLEX_BUILD_BENCH=OFF >/dev/null
+  cmake --build "$work/base-build" -j "${JOBS:-2}" --target rigflex >/dev/null
+  base_rigflex="$work/base-build/rigflex"
+fi
 cmake --build "$build" -j "${JOBS:-2}" --target rigflex >/dev/null
 echo "demo_diff: running the demo with both"
 # The demo's examples are the same in both trees (the run uses this checkout's).
 # Both into the same folder, which files and the terminal name, then set aside.
-bash scripts/run_demo.sh "$work/base-build/rigflex" "$work/out" >"$work/before.log" 2>&1
+bash scripts/run_demo.sh "$base_rigflex" "$work/out" >"$work/before.log" 2>&1
 mv "$work/out" "$work/before"
 bash scripts/run_demo.sh "$build/rigflex" "$work/out" >"$work/after.log" 2>&1
 mv "$work/out" "$work/after"
