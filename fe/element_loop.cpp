@@ -4,7 +4,7 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/discrete_elements.hpp"
-#include "fe/shell_element.hpp"
+#include "fe/shell_types.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -50,7 +50,7 @@ void visit_shells(const Model& model, const ElementVisitor& visit) {
     const ShellProperties p{m.E, m.nu, m.rho, sec.thickness, s.mass};
     x.clear();
     for (NodeId id : s.nodes) x.push_back(model.position(id));
-    const ElementMatrices e = s.formulation() == ShellFormulation::Quad8 ? shell_quad8(x, p) : shell_mitc4(x, p);
+    const ElementMatrices e = shell_type(s).matrices(x, p);
     visit(node_dofs(model, s.nodes), e.K, e.M);
   }
 }

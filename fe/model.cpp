@@ -5,6 +5,7 @@
 
 #include "fe/error.hpp"
 #include "fe/shell_element.hpp"
+#include "fe/shell_types.hpp"
 
 namespace rigflex::fe {
 
@@ -86,8 +87,8 @@ void validate_beam(const Model& m, const BeamElement& b) {
 
 void validate_shell(const Model& m, const ShellElement& s) {
   const std::string what = "shell '" + s.id + "'";
-  if (s.nodes.size() != 4 && s.nodes.size() != 8)
-    throw ModelError({"shell", s.id, "nodes"}, what + " must have 4 or 8 nodes");
+  if (!shell_type_with_nodes(s.nodes.size()))
+    throw ModelError({"shell", s.id, "nodes"}, what + " must have " + shell_node_counts() + " nodes");
   std::vector<Vec3> x;
   for (NodeId n : s.nodes) {
     require_node(m, n, {"shell", s.id, "nodes"}, what);

@@ -48,17 +48,13 @@ struct BeamElement {
   bool rotary_inertia = true;
 };
 
-enum class ShellFormulation { MITC4, Quad8 };
-
 struct ShellElement {
   std::string id;
-  // 4 corners counter-clockwise, or 4 corners then mid-sides 1-2, 2-3, 3-4, 4-1.
+  // 4 corners counter-clockwise, or 4 corners then mid-sides 1-2, 2-3, 3-4,
+  // 4-1: the node count chooses the element type (fe/shell_types.hpp).
   std::vector<NodeId> nodes;
   std::string section;
   MassKind mass = MassKind::Consistent;
-  ShellFormulation formulation() const {
-    return nodes.size() == 8 ? ShellFormulation::Quad8 : ShellFormulation::MITC4;
-  }
 };
 
 struct PointMass {

@@ -10,6 +10,7 @@
 
 #include "fe/error.hpp"
 #include "fe/shell_common.hpp"
+#include "fe/shell_types.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -74,7 +75,8 @@ void check_jacobian(const LocalFrame& f, const std::string& id) {
 }  // namespace
 
 void check_shell_geometry(const std::vector<Vec3>& x, const std::string& element_id) {
-  if (x.size() != 4 && x.size() != 8) fail(element_id, "needs 4 or 8 nodes, has " + std::to_string(x.size()));
+  if (!shell_type_with_nodes(x.size()))
+    fail(element_id, "needs " + shell_node_counts() + " nodes, has " + std::to_string(x.size()));
   for (const Vec3& p : x)
     if (!p.allFinite()) fail(element_id, "non-finite node coordinate");
   check_coincident(x, element_id);

@@ -32,7 +32,7 @@ ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p
 // properties or a non-positive Jacobian; check_shell_geometry() reports
 // geometry problems to the user first.
 
-// Checks the element geometry: 4 or 8 nodes, no coincident nodes, warp
+// Checks the element geometry: a node count of fe/shell_types.hpp, no coincident nodes, warp
 // (node distance from the mean plane) at most 1 % of the element size,
 // positive Jacobian at the integration points and at the nodes. Throws
 // ModelError({"shell", element_id, "nodes"}, ...).

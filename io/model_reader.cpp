@@ -7,6 +7,7 @@
 #include "fe/dof.hpp"
 #include "fe/error.hpp"
 #include "fe/meshers.hpp"
+#include "fe/shell_types.hpp"
 #include "io/yaml_fields.hpp"
 
 namespace rigflex::io {
@@ -93,10 +94,16 @@ class Reader {
     if (s == "euler-bernoulli") return fe::BeamTheory::EulerBernoulli;
     c_.fail(n["theory"], "theory", "expected timoshenko or euler-bernoulli");
   }
+  // A mesher's element order, one of the shell types' (fe/shell_types.hpp);
+  // the meshers generate 4- and 8-node quadrilaterals.
   bool quadratic(const YAML::Node& n) {
     const std::string s = c_.text_or(n, "order", "linear");
-    if (s != "linear" && s != "quadratic") c_.fail(n["order"], "order", "expected linear (MITC4) or quadratic (8-node)");
-    return s == "quadratic";
+    std::string known;
+    for (const fe::ShellType& t : fe::shell_types()) {
+      if (s == t.order) return t.nodes == 8;
+      known += std::string(known.empty() ? "" : " or ") + t.order + " (" + t.name + ")";
+    }
+    c_.fail(n["order"], "order", "expected " + known);
   }
   std::pair<int, int> pair_of_ints(const YAML::Node& n, const std::string& key) {
     const YAML::Node v = c_.required(n, key);
@@ -277,8 +284,12 @@ class Reader {
     s.id = id_or_index(n);
     src_.add("shell", s.id, n);
     const YAML::Node nodes = c_.required(n, "nodes");
-    if (!nodes.IsSequence() || (nodes.size() != 4 && nodes.size() != 8))
-      c_.fail(nodes, "nodes", "a shell has 4 nodes (MITC4) or 8 nodes (quadratic)");
+    if (!nodes.IsSequence() || !fe::shell_type_with_nodes(nodes.size())) {
+      std::string known;
+      for (const fe::ShellType& t : fe::shell_types())
+        known += std::string(known.empty() ? "" : " or ") + std::to_string(t.nodes) + " nodes (" + t.name + ")";
+      c_.fail(nodes, "nodes", "a shell has " + known);
+    }
     for (const auto& v : nodes) s.nodes.push_back(c_.as_integer(v, "nodes"));
     s.section = c_.text(n, "section");
     s.mass = mass_kind(n);

@@ -17,6 +17,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "fe/shell_types.hpp"
+
 namespace rigflex::io {
 namespace fs = std::filesystem;
 
@@ -39,9 +41,8 @@ vtkSmartPointer<vtkUnstructuredGrid> mesh_grid(const fe::Model& model) {
   for (const fe::ShellElement& s : model.shells) {
     std::vector<vtkIdType> ids;
     for (fe::NodeId id : s.nodes) ids.push_back(idx(id));
-    // VTK's quadratic quad uses our order: corners, then mid-sides 1-2, 2-3, 3-4, 4-1.
-    grid->InsertNextCell(s.nodes.size() == 8 ? VTK_QUADRATIC_QUAD : VTK_QUAD, static_cast<vtkIdType>(ids.size()),
-                         ids.data());
+    // The type's VTK cell takes our node order (tests/io check its point count).
+    grid->InsertNextCell(fe::shell_type(s).vtk_cell, static_cast<vtkIdType>(ids.size()), ids.data());
     kind->InsertNextValue(2);
   }
   for (const fe::PointMass& p : model.point_masses) {

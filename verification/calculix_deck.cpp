@@ -15,6 +15,7 @@
 #include <unordered_set>
 
 #include "fe/beam_element.hpp"
+#include "fe/shell_types.hpp"
 
 namespace rigflex::verification {
 namespace fs = std::filesystem;
@@ -329,24 +330,27 @@ class InputWriter {
   void write_shells() {
     struct Group {
       std::string section;
-      bool massless = false, quad8 = false;
+      bool massless = false;
+      const fe::ShellType* type = nullptr;
       std::vector<size_t> shells;
     };
-    std::map<std::tuple<std::string, bool, bool>, Group> groups;
+    // Keyed by the type's place in fe::shell_types(), so that the deck's
+    // order does not depend on addresses.
+    std::map<std::tuple<std::string, bool, size_t>, Group> groups;
     for (size_t i = 0; i < m_.shells.size(); ++i) {
       const fe::ShellElement& s = m_.shells[i];
       const bool massless = s.mass == fe::MassKind::None;
-      const bool quad8 = s.formulation() == fe::ShellFormulation::Quad8;
-      Group& g = groups[{s.section, massless, quad8}];
+      const fe::ShellType& type = fe::shell_type(s);
+      Group& g = groups[{s.section, massless, static_cast<size_t>(&type - fe::shell_types().data())}];
       g.section = s.section;
       g.massless = massless;
-      g.quad8 = quad8;
+      g.type = &type;
       g.shells.push_back(i);
     }
     int k = 0;
     for (const auto& [key, g] : groups) {
       const std::string elset = "ES" + std::to_string(++k);
-      out_ += "** shell section '" + g.section + "'\n*ELEMENT, TYPE=" + std::string(g.quad8 ? "S8R" : "S4") +
+      out_ += "** shell section '" + g.section + "'\n*ELEMENT, TYPE=" + std::string(g.type->calculix) +
               ", ELSET=" + elset + "\n";
       for (size_t i : g.shells) {
         out_ += std::to_string(++element_);
