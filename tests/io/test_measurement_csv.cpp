@@ -538,5 +538,52 @@ TEST(MeasurementSet, EmptyOrMissingFolder) {
   }
 }
 
+// The record keeps where it came from: the file, the line of its first
+// sample and the comments; a record error on sample k names line
+// first_sample_line + k of that file.
+TEST(RecordProvenance, FileLinesAndCommentsOfARecordRead) {
+  Table table = sample_table(3, 4);
+  table.comments = {"# sample_rate_hz: 500", "# remark without a key", "# body: light-truck"};
+  const Record h = parse(table.text());
+  EXPECT_EQ(h.provenance.file, "h1.csv");
+  EXPECT_EQ(h.provenance.first_sample_line, table.row_line(0));
+  EXPECT_EQ(h.provenance.line_of(2), table.row_line(2));
+  EXPECT_EQ(h.provenance.line_of(-1), 0);
+  EXPECT_EQ(h.comment("body"), "light-truck");
+  EXPECT_EQ(h.sample_rate_hz, 500.0);
+
+  const std::vector<Record> records = {Record{}, h};
+  rig::RecordError e(3, "alpha2", "impossible angle");
+  e.set_history(1);
+  const io::InputError located = io::record_input_error(records, e);
+  EXPECT_EQ(located.file(), "h1.csv");
+  EXPECT_EQ(located.line(), table.row_line(3));
+  EXPECT_EQ(located.key(), "alpha2");
+  EXPECT_EQ(located.reason(), "impossible angle");
+  // A whole-record error names the file without a line; a record not read
+  // from a file, or an unknown history, names no file.
+  rig::RecordError whole(-1, "", "wrong rods");
+  whole.set_history(1);
+  EXPECT_EQ(io::record_input_error(records, whole).line(), 0);
+  EXPECT_EQ(io::record_input_error(records, whole).file(), "h1.csv");
+  e.set_history(0);
+  EXPECT_EQ(io::record_input_error(records, e).file(), "(a measurement)");
+  e.set_history(7);
+  EXPECT_EQ(io::record_input_error(records, e).file(), "(a measurement)");
+}
+
+// Without a sample_rate_hz comment the nominal rate comes from the time stamps.
+TEST(RecordProvenance, SampleRateFromTheTimeStampsWithoutAComment) {
+  Table table = sample_table(3, 5);
+  table.comments.clear();
+  const Record h = parse(table.text());
+  EXPECT_TRUE(h.provenance.comments.empty());
+  EXPECT_NEAR(h.sample_rate_hz, 500.0, 1e-9);
+  Eigen::VectorXd one(1);
+  one << 0.0;
+  EXPECT_EQ(rig::nominal_sample_rate(one, {}), 0.0);
+  EXPECT_NEAR(rig::nominal_sample_rate(h.t, {{"sample_rate_hz", "not a number"}}), 500.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace rigflex
