@@ -14,6 +14,7 @@
 #include "io/atomic_file.hpp"
 #include "report/compare_json.hpp"
 #include "io/mass_record.hpp"
+#include "io/measurement_csv.hpp"
 #include "report/reports.hpp"
 #include "io/rig_reader.hpp"
 #include "report/study.hpp"
@@ -32,9 +33,9 @@ struct CompareArgs {
   bool quiet = false;
 };
 
-io::TimeHistory model_history(const diagnose::HistoryComparison& h, int rods, const std::string& label) {
-  io::TimeHistory t;
-  t.comments = {{"source", "rigflex compare: model " + label}, {"measurement", h.source}};
+rig::Record model_history(const diagnose::HistoryComparison& h, int rods, const std::string& label) {
+  rig::Record t;
+  t.provenance.comments = {{"source", "rigflex compare: model " + label}, {"measurement", h.source}};
   t.t = h.t();
   t.force = h.model.leftCols(rods);
   t.alpha = h.model.middleCols(rods, rods);
@@ -69,10 +70,11 @@ void print_table(const diagnose::ModelComparison& c) {
 // h1.csv of set1 and of set2 do not collide (an index where folders share a name).
 std::string model_file_name(const MeasuredModel& mm, size_t i) {
   auto name = [&](size_t k) {
-    return mm.files[k].parent_path().filename().string() + "_" + mm.files[k].filename().string();
+    const std::filesystem::path file(mm.records[k].provenance.file);
+    return file.parent_path().filename().string() + "_" + file.filename().string();
   };
   const std::string mine = name(i);
-  for (size_t k = 0; k < mm.files.size(); ++k) {
+  for (size_t k = 0; k < mm.records.size(); ++k) {
     if (k != i && name(k) == mine) return std::to_string(i + 1) + "_" + mine;
   }
   return mine;
@@ -99,7 +101,7 @@ int run(const CompareArgs& a) {
   diagnose::ModelComparison c;
   try {
     c = diagnose::compare_model(*model, mm.pointers(), mm.sources(), o);
-  } catch (const identify::RecordError& e) {
+  } catch (const rig::RecordError& e) {
     rethrow_record_error(mm, e);
   }
   for (const auto& w : c.warnings) std::fprintf(stderr, "compare: warning: %s\n", w.c_str());
@@ -113,7 +115,7 @@ int run(const CompareArgs& a) {
     e.label = mm.label;
     // A version: the model files, the options that change the errors, and the data compared with.
     std::vector<std::filesystem::path> inputs = mm.model_files;
-    inputs.insert(inputs.end(), mm.files.begin(), mm.files.end());
+    for (const auto& r : mm.records) inputs.emplace_back(r.provenance.file);
     e.fingerprint = report::model_fingerprint(inputs, "fit_window=" + std::to_string(o.compare.fit_window_s));
     e.effects = mm.effect_names;
     e.overall_nrmse = c.overall_nrmse;
@@ -137,8 +139,8 @@ int run(const CompareArgs& a) {
   batch.add_text(out / "compare.html", report::compare_report(c, ctx, entries).html());
   const int rods = mm.model.geometry.rod_count();
   for (size_t i = 0; i < c.histories.size(); ++i) {
-    const io::TimeHistory th = model_history(c.histories[i], rods, mm.label);
-    batch.add(out / "model" / model_file_name(mm, i), [th](const std::filesystem::path& p) { io::write_time_history(p, th); });
+    const rig::Record th = model_history(c.histories[i], rods, mm.label);
+    batch.add(out / "model" / model_file_name(mm, i), [th](const std::filesystem::path& p) { io::write_record_csv(p, th); });
   }
   batch.commit();
   // The study is written once the outputs are: a failed run leaves no entry.

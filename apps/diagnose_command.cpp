@@ -57,7 +57,7 @@ int run(const DiagnoseArgs& a) {
     d = diagnose::diagnose(mm.model, mm.pointers(), mm.sources(), o);
   } catch (const rig::NoEquilibrium& e) {
     throw io::no_equilibrium_error(a.rig, mm.model, e.what());
-  } catch (const identify::RecordError& e) {
+  } catch (const rig::RecordError& e) {
     rethrow_record_error(mm, e);
   }
   std::printf("%-28s %10s %12s %11s %9s\n", "effect", "explained", "significant", "plausible", "p-value");

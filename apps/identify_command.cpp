@@ -85,17 +85,12 @@ std::vector<identify::IdentificationResult> identify_all(const identify::Identif
   int done = 0;
   rig::parallel_for(n, threads, [&](int k) {
     const io::MeasurementSet& set = data.sets[static_cast<size_t>(k)];
-    std::vector<rig::VirtualHistory> records;
-    for (const auto& h : set.histories) records.push_back(io::to_record(h));
-    std::vector<const rig::VirtualHistory*> ptrs;
-    for (const auto& r : records) ptrs.push_back(&r);
+    std::vector<const rig::Record*> ptrs;
+    for (const auto& r : set.records) ptrs.push_back(&r);
     try {
       out[static_cast<size_t>(k)] = identify::identify(rig, ptrs, options);
-    } catch (const identify::RecordError& e) {
-      const auto i = static_cast<size_t>(std::max(0, e.history()));
-      const io::TimeHistory& h = set.histories[i];
-      const int line = e.sample() >= 0 ? h.header_line + 1 + static_cast<int>(e.sample()) : 0;
-      throw io::InputError(set.files[i].string(), line, e.channel(), e.what());
+    } catch (const rig::RecordError& e) {
+      throw io::record_input_error(set.records, e);
     }
     if (!out[static_cast<size_t>(k)].observable) {
       // A folder names its set; loose files are named by the first of them.

@@ -25,18 +25,19 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
-io::TimeHistory to_time_history(const rig::VirtualHistory& h, const rig::RigModel& model, const SimulateArgs& a,
-                                int set, int history) {
-  io::TimeHistory t = io::to_time_history(h);
+// The record as its file shows it: how the run was made, then how the history was (the push).
+rig::Record file_record(const rig::Record& h, const rig::RigModel& model, const SimulateArgs& a, int set,
+                        int history) {
+  rig::Record t = h;
   char rate[32];
   std::snprintf(rate, sizeof rate, "%.10g", model.sensors.sample_rate_hz);
-  t.comments = {{"source", "rigflex simulate"},
-                {"rig", model.name},
-                {"sample_rate_hz", rate},
-                {"seed", std::to_string(a.seed)},
-                {"set", std::to_string(set)},
-                {"history", std::to_string(history)}};
-  for (const auto& c : h.comments) t.comments.push_back(c);
+  t.provenance.comments = {{"source", "rigflex simulate"},
+                           {"rig", model.name},
+                           {"sample_rate_hz", rate},
+                           {"seed", std::to_string(a.seed)},
+                           {"set", std::to_string(set)},
+                           {"history", std::to_string(history)}};
+  for (const auto& c : h.provenance.comments) t.provenance.comments.push_back(c);
   return t;
 }
 
@@ -69,8 +70,8 @@ int run(const SimulateArgs& a) {
     for (size_t j = 0; j < sets[k].size(); ++j) {
       const auto file = out / ("set" + std::to_string(k + 1)) / ("h" + std::to_string(j + 1) + ".csv");
       std::filesystem::create_directories(file.parent_path());
-      batch.add_text(file, io::format_time_history(
-                               to_time_history(sets[k][j], model, a, static_cast<int>(k + 1), static_cast<int>(j + 1))));
+      batch.add_text(file, io::format_record_csv(
+                               file_record(sets[k][j], model, a, static_cast<int>(k + 1), static_cast<int>(j + 1))));
     }
   }
   batch.commit();

@@ -26,7 +26,7 @@ struct Case {
   rig::RigModel start, truth;
 };
 
-std::vector<rig::VirtualHistory> measure(const rig::RigModel& truth) {
+std::vector<rig::Record> measure(const rig::RigModel& truth) {
   rig::MeasurementOptions o;
   o.histories = 6;
   o.seed = 3;
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
               "missing effect | compare < 2 s | diagnose < 30 s |\n|---|---|---|---|---|---|---|\n");
   for (const auto& c : cases) {
     const auto data = measure(c.truth);
-    std::vector<const rig::VirtualHistory*> ptrs;
+    std::vector<const rig::Record*> ptrs;
     for (const auto& h : data) ptrs.push_back(&h);
     double predict = 1e300, compare = 1e300, diagnose = 1e300;
     std::string missing;

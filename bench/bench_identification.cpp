@@ -73,10 +73,10 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-using Sets = std::vector<std::vector<rig::VirtualHistory>>;
+using Sets = std::vector<std::vector<rig::Record>>;
 
-std::vector<const rig::VirtualHistory*> pointers(const std::vector<rig::VirtualHistory>& set) {
-  std::vector<const rig::VirtualHistory*> p;
+std::vector<const rig::Record*> pointers(const std::vector<rig::Record>& set) {
+  std::vector<const rig::Record*> p;
   for (const auto& h : set) p.push_back(&h);
   return p;
 }
@@ -126,9 +126,7 @@ double time_from_files(const identify::IdentificationRig& idr, const std::vector
   const auto t0 = clock_type::now();
   rig::parallel_for(measurements, threads, [&](int k) {
     const io::MeasurementSet set = io::read_measurement_set(folders[static_cast<size_t>(k) % folders.size()], idr.rods());
-    std::vector<rig::VirtualHistory> records;
-    for (const auto& h : set.histories) records.push_back(io::to_record(h));
-    if (!identify::identify(idr, pointers(records), {}).observable) throw std::runtime_error("not observable");
+    if (!identify::identify(idr, pointers(set.records), {}).observable) throw std::runtime_error("not observable");
   });
   return seconds_since(t0);
 }
@@ -176,7 +174,9 @@ int main(int argc, char** argv) {
       folders.push_back(folder / ("set" + std::to_string(k + 1)));
       std::filesystem::create_directories(folders.back());
       for (size_t j = 0; j < sets[k].size(); ++j) {
-        io::write_time_history(folders.back() / ("h" + std::to_string(j + 1) + ".csv"), io::to_time_history(sets[k][j]));
+        rig::Record samples_only = sets[k][j];  // the files hold the samples alone, no comments
+        samples_only.provenance.comments.clear();
+        io::write_record_csv(folders.back() / ("h" + std::to_string(j + 1) + ".csv"), samples_only);
       }
     }
     const long samples = static_cast<long>(o.measurements) * 6 * sets[0][0].t.size();

@@ -85,7 +85,7 @@ double rhs_microseconds(const rig::RigSystem& rig, const rig::Configuration& c) 
 
 // Noise-free signals with the model's integrator settings, or (reference)
 // with CVODE's BDF2 at 1e-8 relative and 1e-12 m.
-rig::VirtualHistory noise_free_history(rig::RigModel model, bool reference, const rig::HistoryRequest& req) {
+rig::Record noise_free_history(rig::RigModel model, bool reference, const rig::HistoryRequest& req) {
   model.sensors.force_noise_n = model.sensors.angle_noise_rad = model.sensors.force_resolution_n = 0.0;
   model.sensors.encoder_bits = 0;
   if (reference) {
@@ -137,7 +137,7 @@ int main(int argc, char** argv) {
       }
       const double rhs_us = rhs_microseconds(rig, eq);
       const double simulated = o.duration + (req.push ? req.push->duration_s : 0.0);
-      const rig::VirtualHistory h1 = noise_free_history(model, false, req), h2 = noise_free_history(model, true, req);
+      const rig::Record h1 = noise_free_history(model, false, req), h2 = noise_free_history(model, true, req);
       const double dF = (h1.force - h2.force).cwiseAbs().maxCoeff();
       const double da = std::max((h1.alpha - h2.alpha).cwiseAbs().maxCoeff(), (h1.beta - h2.beta).cwiseAbs().maxCoeff());
       std::printf("| %s | %d | %.3f | %.0f | %ld | %ld | %ld | %ld | %ld | %.2f | %.2f | %.3f | %.2g | %.2g | %.2g, %.2g |\n",

@@ -322,7 +322,7 @@ double f_test_p_value(double improvement, double dof1, double residual, double d
 
 }  // namespace
 
-Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::VirtualHistory*>& records,
+Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
                    const std::vector<std::string>& sources, const DiagnosisOptions& options) {
   options.validate();
   if (records.empty()) throw std::invalid_argument("diagnose needs at least one history");
@@ -338,7 +338,7 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Virt
     try {
       d.baseline[j] = compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "",
                                       options.compare);
-    } catch (identify::RecordError& e) {
+    } catch (rig::RecordError& e) {
       e.set_history(j);
       throw;
     }

@@ -93,7 +93,7 @@ struct Diagnosis {
   std::string summary;                      // one line: the verdict
 };
 
-Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::VirtualHistory*>& records,
+Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
                    const std::vector<std::string>& sources, const DiagnosisOptions& options);
 
 }  // namespace rigflex::diagnose

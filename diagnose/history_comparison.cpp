@@ -94,7 +94,7 @@ Eigen::Index BandTarget::rows_within(double seconds) const {
   return std::max<Eigen::Index>(r, std::min<Eigen::Index>(static_cast<Eigen::Index>(at.size()), 8));
 }
 
-BandTarget band_target(const ResponseModel& m, const rig::VirtualHistory& record) {
+BandTarget band_target(const ResponseModel& m, const rig::Record& record) {
   BandTarget b;
   b.record = uniform_record(record.t, channels_of(record));
   b.sigma = channel_noise(b.record.channels);
@@ -244,7 +244,7 @@ void check_record_fits_rig(const ResponseModel& m, const Eigen::VectorXd& t, con
       for (int which = 0; which < 2; ++which) {
         const double a = channels(k, (1 + which) * n + i);
         if (!(std::abs(a) < 0.5 * std::numbers::pi)) {
-          throw identify::RecordError(static_cast<long>(k), (which ? "beta" : "alpha") + std::to_string(i + 1),
+          throw rig::RecordError(static_cast<long>(k), (which ? "beta" : "alpha") + std::to_string(i + 1),
                             "an encoder angle of " + std::to_string(a) +
                                 " rad turns the rod above its joint: impossible for a hanging rod (units rad?)");
         }
@@ -266,7 +266,7 @@ void check_record_fits_rig(const ResponseModel& m, const Eigen::VectorXd& t, con
     }
     const rig::PoseFit p = rig::fit_pose(body, world);
     if (p.rms_residual > limit) {
-      throw identify::RecordError(static_cast<long>(k), "",
+      throw rig::RecordError(static_cast<long>(k), "",
                         "the encoder angles put the lower joints " + std::to_string(1e3 * p.rms_residual) +
                             " mm (RMS) away from the carrying frame's joint pattern: check the rod order, the "
                             "encoder axes and the angle units against the rig file");
@@ -274,7 +274,7 @@ void check_record_fits_rig(const ResponseModel& m, const Eigen::VectorXd& t, con
   }
 }
 
-HistoryComparison compare_history(const ResponseModel& m, const rig::VirtualHistory& record, const std::string& source,
+HistoryComparison compare_history(const ResponseModel& m, const rig::Record& record, const std::string& source,
                                   const CompareOptions& options) {
   options.validate();
   if (record.force.cols() != m.system.rods()) {

@@ -47,7 +47,7 @@ struct BandTarget {
   // Band samples up to t(0) + seconds.
   Eigen::Index rows_within(double seconds) const;
 };
-BandTarget band_target(const ResponseModel& m, const rig::VirtualHistory& record);
+BandTarget band_target(const ResponseModel& m, const rig::Record& record);
 
 // Noise-weighted swing-band residual (measured - model) over the first
 // `rows` band samples (all when rows < 0), stacked channel by channel.
@@ -87,14 +87,14 @@ struct HistoryComparison {
   Eigen::MatrixXd residual() const { return target.record.channels - model; }
 };
 
-// RecordError (identify/identification_kinematics.hpp) when the record cannot
+// rig::RecordError (rig/record.hpp) when the record cannot
 // come from this rig: an encoder angle that turns a rod above its joint, or
 // lower joints (from the encoders) that do not form the carrying frame's
 // joint pattern within max(20 mm, 5 % of its radius).
 void check_record_fits_rig(const ResponseModel& m, const Eigen::VectorXd& t, const Eigen::MatrixXd& channels);
 
 // One history: swing-state guess from the encoders, fit, simulation of the record.
-HistoryComparison compare_history(const ResponseModel& m, const rig::VirtualHistory& record, const std::string& source,
+HistoryComparison compare_history(const ResponseModel& m, const rig::Record& record, const std::string& source,
                                   const CompareOptions& options);
 
 Eigen::VectorXd nrmse_of(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model);

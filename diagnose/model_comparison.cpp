@@ -9,7 +9,7 @@
 
 namespace rigflex::diagnose {
 
-ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::VirtualHistory*>& records,
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::Record*>& records,
                               const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
   options.compare.validate();
   if (records.empty()) throw std::invalid_argument("compare needs at least one history");
@@ -24,7 +24,7 @@ ModelComparison compare_model(const ResponseModel& m, const std::vector<const ri
     const std::string source = j < static_cast<int>(sources.size()) ? sources[j] : "history " + std::to_string(j + 1);
     try {
       c.histories[j] = compare_history(m, *records[j], source, options.compare);
-    } catch (identify::RecordError& e) {
+    } catch (rig::RecordError& e) {
       e.set_history(j);
       throw;
     }
@@ -69,7 +69,7 @@ ModelComparison compare_model(const ResponseModel& m, const std::vector<const ri
       } else {
         c.identification_error = r.message;
       }
-    } catch (const identify::RecordError&) {
+    } catch (const rig::RecordError&) {
       throw;
     } catch (const std::exception& e) {
       c.identification_error = e.what();

@@ -38,9 +38,9 @@ struct ModelComparisonOptions {
 };
 
 // RecordError-free: a record that does not fit the rig throws
-// std::invalid_argument naming the source (rod count) or a RecordError from
+// std::invalid_argument naming the source (rod count) or a rig::RecordError from
 // the identification's kinematics (an impossible angle), with its history set.
-ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::VirtualHistory*>& records,
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::Record*>& records,
                               const std::vector<std::string>& sources, const ModelComparisonOptions& options);
 
 // The warning thresholds: a model that misses the data's first seconds by

@@ -20,7 +20,7 @@ std::vector<std::string> channel_names(int rods) {
   return names;
 }
 
-Eigen::MatrixXd channels_of(const rig::VirtualHistory& h) {
+Eigen::MatrixXd channels_of(const rig::Record& h) {
   const Eigen::Index n = h.force.cols();
   Eigen::MatrixXd c(h.t.size(), 3 * n);
   c << h.force, h.alpha, h.beta;

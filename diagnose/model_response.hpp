@@ -38,7 +38,7 @@ struct ElasticState {
 
 // Sensor channels as one matrix, samples x 3n: F1..Fn, alpha1..alphan, beta1..betan.
 std::vector<std::string> channel_names(int rods);
-Eigen::MatrixXd channels_of(const rig::VirtualHistory& h);
+Eigen::MatrixXd channels_of(const rig::Record& h);
 
 // A rig model ready to predict: the assembled system and its linearization
 // (the static equilibrium and the generalized-alpha iteration matrix).

@@ -8,7 +8,6 @@
 #include <string>
 
 #include "identify/mass_statistics.hpp"
-#include "rig/pose_fit.hpp"
 
 namespace rigflex::identify {
 namespace {
@@ -32,11 +31,189 @@ Eigen::Matrix3d point_inertia(double m, const rig::Vec3& b) {
   return m * (b.squaredNorm() * Eigen::Matrix3d::Identity() - b * b.transpose());
 }
 
-double median_step(const Eigen::VectorXd& t) {
-  std::vector<double> dt(static_cast<size_t>(t.size() - 1));
-  for (Eigen::Index k = 0; k + 1 < t.size(); ++k) dt[static_cast<size_t>(k)] = t(k + 1) - t(k);
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2];
+// The identified system: the record plus point masses that move with it (the
+// rods' moving thirds), whose sums are taken out of the result.
+struct PointMassSums {
+  double m_id = 0;                                     // kg, record and points
+  rig::Vec3 s_points = rig::Vec3::Zero();              // the points' first moment about P
+  Eigen::Matrix3d J_points = Eigen::Matrix3d::Zero();  // their inertia about P
+};
+
+PointMassSums point_mass_sums(double mass, const std::vector<std::pair<double, rig::Vec3>>& point_masses) {
+  PointMassSums p;
+  p.m_id = mass;
+  for (const auto& [m, b] : point_masses) {
+    p.m_id += m;
+    p.s_points += m * b;
+    p.J_points += point_inertia(m, b);
+  }
+  return p;
+}
+
+// Unknowns kept: c components not imposed, then the six inertia components
+// (indices into xG, yG, zG, Jxx, Jyy, Jzz, Jxy, Jxz, Jyz).
+struct Unknowns {
+  std::vector<int> fixed, free;
+  rig::Vec3 c_id_imposed;  // the identified system's CoG where imposed
+  int count() const { return static_cast<int>(free.size()); }
+};
+
+Unknowns unknowns_of(const IdentificationOptions& options, double mass, const PointMassSums& p) {
+  Unknowns u;
+  if (options.cog_constraint == CogConstraint::in_plane) u.fixed = {0, 1};
+  if (options.cog_constraint == CogConstraint::full) u.fixed = {0, 1, 2};
+  u.c_id_imposed = (mass * options.imposed_cog + p.s_points) / p.m_id;
+  for (int j = 0; j < 9; ++j) {
+    if (std::find(u.fixed.begin(), u.fixed.end(), j) == u.fixed.end()) u.free.push_back(j);
+  }
+  return u;
+}
+
+IdentificationResult too_few_equations(size_t samples, const Unknowns& u) {
+  const auto& names = mass_component_names();
+  IdentificationResult res;
+  res.equations = static_cast<int>(samples);
+  std::string list;
+  for (int j : u.free) {
+    res.unobservable.push_back(names[static_cast<size_t>(j)]);
+    list += (list.empty() ? "" : ", ") + res.unobservable.back();
+  }
+  res.message = "too few equation times (" + std::to_string(samples) + ") for " + std::to_string(u.count()) +
+                " unknowns: the record is shorter than the differentiation window; not observable: " + list;
+  return res;
+}
+
+// Rows made dimensionless by the weight (and the rig size for moments),
+// columns by the physical scale of each unknown, so that singular values
+// and standard deviations compare across units.
+struct ScaledEquations {
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b;
+  double row_force = 0, row_moment = 0;
+  Eigen::Matrix<double, 9, 1> col_scale;
+};
+
+ScaledEquations scaled_equations(const std::vector<EquationSample>& samples, double m_id, const Unknowns& u,
+                                 double gravity, double size) {
+  const int nu = u.count();
+  const Eigen::Index rows = 6 * static_cast<Eigen::Index>(samples.size());
+  ScaledEquations eq;
+  eq.row_force = 1.0 / (m_id * gravity);
+  eq.row_moment = eq.row_force / size;
+  eq.col_scale << size, size, size, Eigen::Matrix<double, 6, 1>::Constant(m_id * size * size);
+  eq.A.resize(rows, nu);
+  eq.b.resize(rows);
+  Eigen::Index row = 0;
+  for (const EquationSample& e : samples) {
+    const rig::Vec3 gc = e.R.transpose() * rig::Vec3(0, 0, -gravity);
+    Eigen::Matrix<double, 6, 9> a = Eigen::Matrix<double, 6, 9>::Zero();
+    Eigen::Matrix<double, 6, 1> rhs;
+    a.block<3, 3>(0, 0) = m_id * (rig::skew(e.dw) + rig::skew(e.w) * rig::skew(e.w));
+    rhs.head<3>() = e.force + m_id * (gc - e.a);
+    a.block<3, 3>(3, 0) = -m_id * rig::skew(e.a - gc);
+    a.block<3, 6>(3, 3) = inertia_map(e.dw) + rig::skew(e.w) * inertia_map(e.w);
+    rhs.tail<3>() = e.moment;
+    for (int j : u.fixed) rhs -= a.col(j) * u.c_id_imposed(j);
+    for (int i = 0; i < 6; ++i) {
+      const double w = i < 3 ? eq.row_force : eq.row_moment;
+      for (int q = 0; q < nu; ++q) eq.A(row + i, q) = w * a(i, u.free[q]) * eq.col_scale(u.free[q]);
+      eq.b(row + i) = w * rhs(i);
+    }
+    row += 6;
+  }
+  return eq;
+}
+
+// QR of the scaled system, then the pseudo-inverse through the SVD of its
+// triangular factor; s is the residual's standard error.
+struct ScaledSolution {
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd;
+  Eigen::VectorXd y, resid;
+  double s = 0;
+};
+
+ScaledSolution solve_scaled(const ScaledEquations& eq, int nu) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(eq.A);
+  const Eigen::MatrixXd Rf = qr.matrixQR().topRows(nu).triangularView<Eigen::Upper>();
+  const Eigen::VectorXd qtb = (qr.householderQ().transpose() * eq.b).head(nu);
+  ScaledSolution sol;
+  sol.svd.compute(Rf, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  sol.y = sol.svd.solve(qtb);
+  sol.resid = eq.A * sol.y - eq.b;
+  const double dof = std::max<double>(1.0, static_cast<double>(eq.A.rows() - nu));
+  sol.s = sol.resid.norm() / std::sqrt(dof);
+  return sol;
+}
+
+// The unknowns in a direction whose singular value is lost or too small for
+// the residual (standard deviation above the observability limit).
+std::vector<std::string> unobservable_unknowns(const ScaledSolution& sol, const Unknowns& u,
+                                               const IdentificationOptions& options) {
+  const auto& names = mass_component_names();
+  const Eigen::VectorXd& sv = sol.svd.singularValues();
+  const int nu = u.count();
+  std::vector<std::string> out;
+  for (int i = 0; i < nu; ++i) {
+    const bool rank_lost = sv(i) <= 1e-12 * sv(0);
+    if (!rank_lost && sol.s / sv(i) <= options.observability_limit) continue;
+    for (int q = 0; q < nu; ++q) {
+      const std::string name = names[static_cast<size_t>(u.free[q])];
+      if (std::abs(sol.svd.matrixV()(q, i)) > 0.3 && std::find(out.begin(), out.end(), name) == out.end()) {
+        out.push_back(name);
+      }
+    }
+  }
+  return out;
+}
+
+// Standard deviations of the unknowns in physical units (0 for the imposed ones).
+void set_standard_deviations(IdentificationResult& res, const ScaledSolution& sol, const ScaledEquations& eq,
+                             const Unknowns& u) {
+  const Eigen::VectorXd& sv = sol.svd.singularValues();
+  const Eigen::MatrixXd cov = sol.s * sol.s * sol.svd.matrixV() * sv.cwiseInverse().cwiseAbs2().asDiagonal() *
+                              sol.svd.matrixV().transpose();
+  res.standard_deviation.fill(0.0);
+  for (int q = 0; q < u.count(); ++q) {
+    res.standard_deviation[static_cast<size_t>(u.free[q])] = std::sqrt(cov(q, q)) * eq.col_scale(u.free[q]);
+  }
+}
+
+// The rms of the force and moment rows, back in N and N m.
+void set_residual_rms(IdentificationResult& res, const ScaledSolution& sol, const ScaledEquations& eq) {
+  const Eigen::Index rows = eq.A.rows();
+  double sf = 0, sm = 0;
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    const bool force_row = (r % 6) < 3;
+    const double v = sol.resid(r) / (force_row ? eq.row_force : eq.row_moment);
+    (force_row ? sf : sm) += v * v;
+  }
+  res.force_residual_rms = std::sqrt(sf / (rows / 2.0));
+  res.moment_residual_rms = std::sqrt(sm / (rows / 2.0));
+}
+
+// The record's mass properties from the identified system's (the points
+// taken out), and the checks of the inertia tensor.
+void set_mass_properties(IdentificationResult& res, const Eigen::Matrix<double, 9, 1>& x, double mass,
+                         const PointMassSums& p, const Unknowns& u) {
+  const rig::Vec3 c_id = x.head<3>();
+  const Eigen::Matrix3d J_P_id = inertia_matrix(x.tail<6>());
+  res.properties.mass = mass;
+  res.properties.cog = (p.m_id * c_id - p.s_points) / mass;
+  res.inertia_about_P = J_P_id - p.J_points;
+  res.properties.inertia = res.inertia_about_P - point_inertia(mass, res.properties.cog);
+  // The CoG's deviations carry over; the inertia's are quoted about P (the
+  // transfer adds the CoG's, second order for the moments).
+  for (int j : u.fixed) res.standard_deviation[static_cast<size_t>(j)] = 0.0;
+  for (int j = 0; j < 3; ++j) res.standard_deviation[static_cast<size_t>(j)] *= p.m_id / mass;
+
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(res.properties.inertia);
+  res.principal_moments = eig.eigenvalues();
+  res.principal_axes = eig.eigenvectors();
+  if (res.principal_axes.determinant() < 0) res.principal_axes.col(2) *= -1.0;
+  const rig::Vec3& pm = res.principal_moments;
+  res.positive_definite = pm(0) > 0;
+  const double tol = 1e-9 * pm.cwiseAbs().maxCoeff();
+  res.triangle_inequality = pm(2) <= pm(0) + pm(1) + tol;
 }
 
 }  // namespace
@@ -50,182 +227,24 @@ void IdentificationOptions::validate() const {
   if (!(observability_limit > 0)) throw std::invalid_argument("identification.observability_limit must be positive");
 }
 
-std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const MotionSeries& motion,
-                                             const IdentificationOptions& options) {
-  options.validate();
-  const int n = rig.rods();
-  const Eigen::Index S = motion.t.size();
-  std::vector<EquationSample> out;
-  if (S < 3) return out;
-  const double h_median = median_step(motion.t);
-  // Stretches of uniform sampling: a step more than half a sample off the
-  // median (a dropped sample, a logger pause) ends one. Smaller deviations
-  // are time stamps rounded by the logger (300 Hz stamped in whole ms: steps
-  // of 3 and 4 ms) over a uniform clock: the samples count, not the stamps,
-  // and the sample interval is the mean step inside the stretches.
-  std::vector<Eigen::Index> segment_start(static_cast<size_t>(S));
-  segment_start[0] = 0;
-  double inside = 0;
-  Eigen::Index steps = 0;
-  for (Eigen::Index k = 1; k < S; ++k) {
-    const double dt = motion.t(k) - motion.t(k - 1);
-    const bool uniform = std::abs(dt - h_median) < 0.5 * h_median;
-    segment_start[static_cast<size_t>(k)] = uniform ? segment_start[static_cast<size_t>(k - 1)] : k;
-    if (uniform) inside += dt, ++steps;
-  }
-  const double h = steps ? inside / static_cast<double>(steps) : h_median;
-  const SavitzkyGolayKernels kern = savitzky_golay_kernels(options.differentiation, h);
-  const int hw = kern.half_width;
-  const int stride = std::max(1, static_cast<int>(std::lround(1.0 / (h * options.equation_rate_hz))));
-  const Eigen::Index nj = 3 * n;
-
-  rig::JointPoints b = rig::JointPoints::Zero(3, n), Bs = rig::JointPoints::Zero(3, n);
-  for (int i = 0; i < n; ++i) b.col(i) = rig.geometry.rods[i].lower;
-  const double size = std::sqrt((b.colwise() - b.rowwise().mean()).squaredNorm() / n);
-  Eigen::VectorXd x0(nj + 6), x1(nj), x2(nj), rhs_a(nj);
-  Eigen::MatrixXd G(nj, 6);
-  for (Eigen::Index k = hw; k + hw < S; k += stride) {
-    if (segment_start[static_cast<size_t>(k + hw)] > k - hw) continue;
-    for (Eigen::Index c = 0; c < nj; ++c) {
-      const SavitzkyGolayEstimate est = savitzky_golay_at(kern, &motion.joints(k, c));
-      x0(c) = est.value;
-      x1(c) = est.first;
-      x2(c) = est.second;
-    }
-    for (Eigen::Index c = 0; c < 3; ++c) {
-      x0(nj + c) = savitzky_golay_value_at(kern, &motion.force(k, c));
-      x0(nj + 3 + c) = savitzky_golay_value_at(kern, &motion.moment(k, c));
-    }
-    for (int i = 0; i < n; ++i) Bs.col(i) = x0.segment<3>(3 * i);
-    const rig::PoseFit pose = rig::fit_pose(b, Bs);
-    // Encoders and lengths that no rigid carrying frame can satisfy (angles
-    // in degrees, swapped columns, another rig's file) are not a noisy fit.
-    if (pose.rms_residual > 0.05 * size) {
-      throw RecordError(k, "", "the rod directions put the lower joints " + std::to_string(1e3 * pose.rms_residual) +
-                                   " mm (rms) away from any pose of the carrying frame: the encoder angles do not "
-                                   "fit the rig's geometry (check units, column order and the rig file)");
-    }
-    // Rigid velocity and acceleration fields through the joints:
-    // dB_i = v + w x rho_i, ddB_i - w x (w x rho_i) = a + dw x rho_i.
-    for (int i = 0; i < n; ++i) {
-      const rig::Vec3 rho = pose.R * b.col(i);
-      G.block<3, 3>(3 * i, 0).setIdentity();
-      G.block<3, 3>(3 * i, 3) = -rig::skew(rho);
-    }
-    const Eigen::Matrix<double, 6, 6> GtG = G.transpose() * G;
-    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(GtG);
-    const Eigen::Matrix<double, 6, 1> vel = ldlt.solve(G.transpose() * x1);
-    const rig::Vec3 w = vel.tail<3>();
-    for (int i = 0; i < n; ++i) {
-      const rig::Vec3 rho = pose.R * b.col(i);
-      rhs_a.segment<3>(3 * i) = x2.segment<3>(3 * i) - w.cross(w.cross(rho));
-    }
-    const Eigen::Matrix<double, 6, 1> acc = ldlt.solve(G.transpose() * rhs_a);
-    EquationSample e;
-    e.R = pose.R;
-    const Eigen::Matrix3d Rt = pose.R.transpose();
-    e.w = Rt * w;
-    e.dw = Rt * acc.tail<3>();
-    e.a = Rt * acc.head<3>();
-    const rig::Vec3 F = x0.segment<3>(nj);
-    e.force = Rt * F;
-    e.moment = Rt * (x0.segment<3>(nj + 3) - pose.r.cross(F));
-    e.pose_residual = pose.rms_residual;
-    out.push_back(e);
-  }
-  return out;
-}
-
 IdentificationResult solve_mass_properties(const std::vector<EquationSample>& samples, double mass,
                                            const std::vector<std::pair<double, rig::Vec3>>& point_masses, double gravity,
                                            double size, const IdentificationOptions& options) {
   options.validate();
   if (!(mass > 0) || !(size > 0) || !(gravity > 0)) throw std::invalid_argument("solve_mass_properties: bad scales");
-  const auto& names = mass_component_names();
-  double m_id = mass;
-  rig::Vec3 s_points = rig::Vec3::Zero();
-  Eigen::Matrix3d J_points = Eigen::Matrix3d::Zero();
-  for (const auto& [m, b] : point_masses) {
-    m_id += m;
-    s_points += m * b;
-    J_points += point_inertia(m, b);
-  }
+  const PointMassSums p = point_mass_sums(mass, point_masses);
+  const Unknowns u = unknowns_of(options, mass, p);
+  const int nu = u.count();
+  if (6 * static_cast<Eigen::Index>(samples.size()) < 9) return too_few_equations(samples.size(), u);
 
-  // Unknowns kept: c components not imposed, then the six inertia components.
-  std::vector<int> fixed;
-  if (options.cog_constraint == CogConstraint::in_plane) fixed = {0, 1};
-  if (options.cog_constraint == CogConstraint::full) fixed = {0, 1, 2};
-  const rig::Vec3 c_id_imposed = (mass * options.imposed_cog + s_points) / m_id;
-  std::vector<int> free;
-  for (int j = 0; j < 9; ++j) {
-    if (std::find(fixed.begin(), fixed.end(), j) == fixed.end()) free.push_back(j);
-  }
-  const int nu = static_cast<int>(free.size());
-  const Eigen::Index rows = 6 * static_cast<Eigen::Index>(samples.size());
-
+  const ScaledEquations eq = scaled_equations(samples, p.m_id, u, gravity, size);
+  const ScaledSolution sol = solve_scaled(eq, nu);
   IdentificationResult res;
   res.equations = static_cast<int>(samples.size());
-  if (rows < 9) {
-    std::string list;
-    for (int j : free) {
-      res.unobservable.push_back(names[static_cast<size_t>(j)]);
-      list += (list.empty() ? "" : ", ") + res.unobservable.back();
-    }
-    res.message = "too few equation times (" + std::to_string(samples.size()) + ") for " + std::to_string(nu) +
-                  " unknowns: the record is shorter than the differentiation window; not observable: " + list;
-    return res;
-  }
-
-  // Rows made dimensionless by the weight (and the rig size for moments),
-  // columns by the physical scale of each unknown, so that singular values
-  // and standard deviations compare across units.
-  const double row_force = 1.0 / (m_id * gravity), row_moment = row_force / size;
-  Eigen::Matrix<double, 9, 1> col_scale;
-  col_scale << size, size, size, Eigen::Matrix<double, 6, 1>::Constant(m_id * size * size);
-  Eigen::MatrixXd A(rows, nu);
-  Eigen::VectorXd b(rows);
-  Eigen::Index row = 0;
-  for (const EquationSample& e : samples) {
-    const rig::Vec3 gc = e.R.transpose() * rig::Vec3(0, 0, -gravity);
-    Eigen::Matrix<double, 6, 9> a = Eigen::Matrix<double, 6, 9>::Zero();
-    Eigen::Matrix<double, 6, 1> rhs;
-    a.block<3, 3>(0, 0) = m_id * (rig::skew(e.dw) + rig::skew(e.w) * rig::skew(e.w));
-    rhs.head<3>() = e.force + m_id * (gc - e.a);
-    a.block<3, 3>(3, 0) = -m_id * rig::skew(e.a - gc);
-    a.block<3, 6>(3, 3) = inertia_map(e.dw) + rig::skew(e.w) * inertia_map(e.w);
-    rhs.tail<3>() = e.moment;
-    for (int j : fixed) rhs -= a.col(j) * c_id_imposed(j);
-    for (int i = 0; i < 6; ++i) {
-      const double w = i < 3 ? row_force : row_moment;
-      for (int q = 0; q < nu; ++q) A(row + i, q) = w * a(i, free[q]) * col_scale(free[q]);
-      b(row + i) = w * rhs(i);
-    }
-    row += 6;
-  }
-
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(A);
-  const Eigen::MatrixXd Rf = qr.matrixQR().topRows(nu).triangularView<Eigen::Upper>();
-  const Eigen::VectorXd qtb = (qr.householderQ().transpose() * b).head(nu);
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Rf, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = sol.svd.singularValues();
   res.singular_values = sv;
   res.condition_number = sv(nu - 1) > 0 ? sv(0) / sv(nu - 1) : std::numeric_limits<double>::infinity();
-
-  const Eigen::VectorXd y = svd.solve(qtb);
-  const Eigen::VectorXd resid = A * y - b;
-  const double dof = std::max<double>(1.0, static_cast<double>(rows - nu));
-  const double s = resid.norm() / std::sqrt(dof);
-  for (int i = 0; i < nu; ++i) {
-    const bool rank_lost = sv(i) <= 1e-12 * sv(0);
-    if (!rank_lost && s / sv(i) <= options.observability_limit) continue;
-    for (int q = 0; q < nu; ++q) {
-      const std::string name = names[static_cast<size_t>(free[q])];
-      if (std::abs(svd.matrixV()(q, i)) > 0.3 &&
-          std::find(res.unobservable.begin(), res.unobservable.end(), name) == res.unobservable.end()) {
-        res.unobservable.push_back(name);
-      }
-    }
-  }
+  res.unobservable = unobservable_unknowns(sol, u, options);
   if (!res.unobservable.empty()) {
     std::string list;
     for (const auto& n : res.unobservable) list += (list.empty() ? "" : ", ") + n;
@@ -237,48 +256,17 @@ IdentificationResult solve_mass_properties(const std::vector<EquationSample>& sa
   res.observable = true;
 
   Eigen::Matrix<double, 9, 1> x;
-  for (int j : fixed) x(j) = c_id_imposed(j);
-  for (int q = 0; q < nu; ++q) x(free[q]) = y(q) * col_scale(free[q]);
-  const Eigen::MatrixXd cov = s * s * svd.matrixV() * sv.cwiseInverse().cwiseAbs2().asDiagonal() *
-                              svd.matrixV().transpose();
-  res.standard_deviation.fill(0.0);
-  for (int q = 0; q < nu; ++q) {
-    res.standard_deviation[static_cast<size_t>(free[q])] = std::sqrt(cov(q, q)) * col_scale(free[q]);
-  }
-  double sf = 0, sm = 0;
-  for (Eigen::Index r = 0; r < rows; ++r) {
-    const bool force_row = (r % 6) < 3;
-    const double v = resid(r) / (force_row ? row_force : row_moment);
-    (force_row ? sf : sm) += v * v;
-  }
-  res.force_residual_rms = std::sqrt(sf / (rows / 2.0));
-  res.moment_residual_rms = std::sqrt(sm / (rows / 2.0));
-
+  for (int j : u.fixed) x(j) = u.c_id_imposed(j);
+  for (int q = 0; q < nu; ++q) x(u.free[q]) = sol.y(q) * eq.col_scale(u.free[q]);
+  set_standard_deviations(res, sol, eq, u);
+  set_residual_rms(res, sol, eq);
   // The rods' moving thirds were part of the identified system.
-  const rig::Vec3 c_id = x.head<3>();
-  const Eigen::Matrix3d J_P_id = inertia_matrix(x.tail<6>());
-  res.properties.mass = mass;
-  res.properties.cog = (m_id * c_id - s_points) / mass;
-  res.inertia_about_P = J_P_id - J_points;
-  res.properties.inertia = res.inertia_about_P - point_inertia(mass, res.properties.cog);
-  // The CoG's deviations carry over; the inertia's are quoted about P (the
-  // transfer adds the CoG's, second order for the moments).
-  for (int j : fixed) res.standard_deviation[static_cast<size_t>(j)] = 0.0;
-  for (int j = 0; j < 3; ++j) res.standard_deviation[static_cast<size_t>(j)] *= m_id / mass;
-
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(res.properties.inertia);
-  res.principal_moments = eig.eigenvalues();
-  res.principal_axes = eig.eigenvectors();
-  if (res.principal_axes.determinant() < 0) res.principal_axes.col(2) *= -1.0;
-  const rig::Vec3& p = res.principal_moments;
-  res.positive_definite = p(0) > 0;
-  const double tol = 1e-9 * p.cwiseAbs().maxCoeff();
-  res.triangle_inequality = p(2) <= p(0) + p(1) + tol;
+  set_mass_properties(res, x, mass, p, u);
   res.message = "identified from " + std::to_string(samples.size()) + " equation times";
   return res;
 }
 
-IdentificationResult identify(const IdentificationRig& rig, const std::vector<const rig::VirtualHistory*>& histories,
+IdentificationResult identify(const IdentificationRig& rig, const std::vector<const rig::Record*>& histories,
                               const IdentificationOptions& options) {
   rig.validate();
   options.validate();
@@ -288,14 +276,14 @@ IdentificationResult identify(const IdentificationRig& rig, const std::vector<co
     MotionSeries motion;
     try {
       motion = motion_series(rig, *histories[i]);
-    } catch (RecordError& e) {
+    } catch (rig::RecordError& e) {
       e.set_history(static_cast<int>(i));
       throw;
     }
     try {
       const std::vector<EquationSample> e = equation_samples(rig, motion, options);
       samples.insert(samples.end(), e.begin(), e.end());
-    } catch (RecordError& e) {
+    } catch (rig::RecordError& e) {
       e.set_history(static_cast<int>(i));
       throw;
     }

@@ -74,7 +74,7 @@ struct IdentificationResult {
 // the joints). Equation times: every sample whose window lies inside a
 // stretch of uniform sampling (a step more than half a sample off the
 // median, as a dropped sample makes, splits the record), thinned to
-// equation_rate_hz. RecordError when the joints fit no rigid pose.
+// equation_rate_hz. rig::RecordError when the joints fit no rigid pose.
 std::vector<EquationSample> equation_samples(const IdentificationRig& rig, const MotionSeries& motion,
                                              const IdentificationOptions& options);
 
@@ -86,7 +86,7 @@ IdentificationResult solve_mass_properties(const std::vector<EquationSample>& sa
                                            double size, const IdentificationOptions& options);
 
 // One set: every history through motion_series and equation_samples, one least-squares solve.
-IdentificationResult identify(const IdentificationRig& rig, const std::vector<const rig::VirtualHistory*>& histories,
+IdentificationResult identify(const IdentificationRig& rig, const std::vector<const rig::Record*>& histories,
                               const IdentificationOptions& options);
 
 // The body alone: the tare (carrying frame measured alone) taken out of the system.

@@ -8,12 +8,11 @@
 // F_i / k_i, deforms the carrying frame's joints quasi-statically, and lets
 // the forces act at the deformed points.
 #include <Eigen/Core>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "identify/identification_rig.hpp"
-#include "rig/simulation.hpp"
+#include "rig/record.hpp"
 
 namespace rigflex::identify {
 
@@ -34,27 +33,10 @@ struct MotionSeries {
   Eigen::MatrixX3d force, moment;
 };
 
-// A record that does not fit the rig: which sample (0-based, -1 for the
-// whole record) and which channel ("alpha2", "F1"; empty when not one).
-class RecordError : public std::invalid_argument {
- public:
-  RecordError(long sample, std::string channel, const std::string& message)
-      : std::invalid_argument(message), sample_(sample), channel_(std::move(channel)) {}
-  long sample() const { return sample_; }
-  const std::string& channel() const { return channel_; }
-  int history() const { return history_; }  // index in a set (identify sets it), -1 unknown
-  void set_history(int h) { history_ = h; }
-
- private:
-  long sample_;
-  int history_ = -1;
-  std::string channel_;
-};
-
-// RecordError when the record does not fit the rig (rod count, sizes) or a
+// rig::RecordError when the record does not fit the rig (rod count, sizes) or a
 // rod direction is impossible (the rod above its joint). The lower joints'
 // consistency with a rigid carrying frame is checked where the pose is
 // fitted (equation_samples).
-MotionSeries motion_series(const IdentificationRig& rig, const rig::VirtualHistory& record);
+MotionSeries motion_series(const IdentificationRig& rig, const rig::Record& record);
 
 }  // namespace rigflex::identify

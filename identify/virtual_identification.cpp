@@ -12,12 +12,12 @@ namespace rigflex::identify {
 namespace {
 
 std::optional<VirtualOutcome> identify_sets(const IdentificationRig* rig,
-                                            const std::vector<std::vector<rig::VirtualHistory>>& sets,
+                                            const std::vector<std::vector<rig::Record>>& sets,
                                             const VirtualStudyOptions& o) {
   if (!rig) return std::nullopt;
   VirtualOutcome out;
   for (const auto& set : sets) {
-    std::vector<const rig::VirtualHistory*> ptrs;
+    std::vector<const rig::Record*> ptrs;
     for (const auto& h : set) ptrs.push_back(&h);
     const IdentificationResult r = identify(*rig, ptrs, o.identification);
     if (!r.observable) {

@@ -14,51 +14,42 @@
 #include <vector>
 
 #include "io/input_error.hpp"
-#include "rig/simulation.hpp"
+#include "rig/record.hpp"
 
 namespace rigflex::io {
 
-struct TimeHistory {
-  std::vector<std::pair<std::string, std::string>> comments;  // leading "# key: value" lines, in order
-  Eigen::VectorXd t;      // s, strictly increasing
-  Eigen::MatrixXd force;  // samples x n, columns F1..Fn (N, tension positive)
-  Eigen::MatrixXd alpha;  // samples x n, alpha1..alphan (rad)
-  Eigen::MatrixXd beta;   // samples x n, beta1..betan (rad)
-  int header_line = 0;    // 1-based line of the header in the file read (sample k is on line header_line + 1 + k)
-
-  int rods() const;     // n
-  int samples() const;  // rows of t
-  // The value of the first comment with this key; "" if there is none.
-  std::string comment(const std::string& key) const;
-};
-
-// Reads one time history. expected_rods = 0 infers n from the columns present
+// Reads one time history into a record: its comments (the leading
+// "# key: value" lines, in order), the file and the line of its first sample
+// as its provenance. expected_rods = 0 infers n from the columns present
 // (F1..Fn contiguous, with alpha1..alphan and beta1..betan); otherwise a file
 // with another rod count is refused. Bad input throws InputError naming the
 // file, the 1-based line and the column.
-TimeHistory read_time_history(const std::filesystem::path& file, int expected_rods = 0);
-// The same from a stream; `file_name` is only used in errors.
-TimeHistory parse_time_history(std::istream& in, const std::string& file_name, int expected_rods = 0);
+rig::Record read_record_csv(const std::filesystem::path& file, int expected_rods = 0);
+// The same from a stream; `file_name` names the text in errors and in the provenance.
+rig::Record parse_record_csv(std::istream& in, const std::string& file_name, int expected_rods = 0);
 
-// The file's text: comments, header "t,F1..Fn,alpha1,beta1,..,alphan,betan",
+// The file's text: the provenance's comments, header "t,F1..Fn,alpha1,beta1,..,alphan,betan",
 // one line per sample, numbers as the shortest decimal that reads back as the
 // same double, LF line endings. Deterministic. Throws std::invalid_argument
 // for a history that could not be read back as itself (inconsistent sizes, no
 // samples, non-finite values, time not strictly increasing, comments that do
 // not fit on a "# key: value" line).
-std::string format_time_history(const TimeHistory& h);
+std::string format_record_csv(const rig::Record& h);
 // Checks and formats `h` first, then writes the file atomically: on any error
 // no file (and no temporary file) is left, and an existing file is unchanged.
-void write_time_history(const std::filesystem::path& file, const TimeHistory& h);
+void write_record_csv(const std::filesystem::path& file, const rig::Record& h);
 
-// The same samples as the rig library's record (comments stay with the file).
-rig::VirtualHistory to_record(const TimeHistory& h);
-TimeHistory to_time_history(const rig::VirtualHistory& r);
+// The InputError for a RecordError raised on records[e.history()] (by
+// identification, compare or diagnose): the record's file, the line of the
+// sample (its provenance), the channel and the reason. A record that was not
+// read from a file, or an unknown history, is named "(a measurement)". The
+// one place where a record's problem becomes file:line.
+InputError record_input_error(const std::vector<rig::Record>& records, const rig::RecordError& e);
 
 // One measurement of a body: the time histories of a folder.
 struct MeasurementSet {
   std::vector<std::filesystem::path> files;
-  std::vector<TimeHistory> histories;  // histories[i] read from files[i]
+  std::vector<rig::Record> records;  // records[i] read from files[i] (its provenance names it too)
 };
 
 // All *.csv files directly in `folder` (extension case-insensitive, hidden

@@ -20,9 +20,9 @@
 #include <Eigen/LU>
 #include <optional>
 
+#include "rig/integration.hpp"
 #include "rig/linearization.hpp"
 #include "rig/rig_system.hpp"
-#include "rig/simulation.hpp"
 
 namespace rigflex::rig {
 

@@ -18,21 +18,6 @@
 
 namespace rigflex::rig {
 
-ExternalLoad Push::at(double t) const {
-  ExternalLoad e;
-  if (t < 0 || t > duration_s) return e;
-  const double shape = 0.5 * (1.0 - std::cos(2.0 * std::numbers::pi * t / duration_s));
-  e.force = shape * force;
-  e.moment = shape * moment;
-  return e;
-}
-
-const ExternalLoad* Push::load_at(double t, ExternalLoad& storage) const {
-  if (t > duration_s) return nullptr;
-  storage = at(t);
-  return &storage;
-}
-
 struct Integrator::Impl {
   const RigSystem& rig;
   SimulationOptions options;
@@ -213,11 +198,11 @@ Configuration released_from(const RigSystem& rig, const Configuration& eq, const
 }
 
 template <class Stepper>
-VirtualHistory record(const RigSystem& rig, Stepper& integ, const Configuration& equilibrium,
+Record record(const RigSystem& rig, Stepper& integ, const Configuration& equilibrium,
                       const HistoryRequest& request, IntegratorStatistics* statistics) {
   const SensorOptions& sensors = rig.model().sensors;
   double t_release = 0.0;
-  VirtualHistory h;
+  Record h;
   if (request.push) {
     integ.reset(0.0, equilibrium, rig.at_rest(), &*request.push);
     integ.advance_to(request.push->duration_s);
@@ -242,6 +227,7 @@ VirtualHistory record(const RigSystem& rig, Stepper& integ, const Configuration&
   h.force.resize(samples, n);
   h.alpha.resize(samples, n);
   h.beta.resize(samples, n);
+  h.sample_rate_hz = fs;
   std::mt19937_64 gen(request.noise_seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double angle_step = sensors.encoder_bits > 0 ? 2.0 * std::numbers::pi / std::ldexp(1.0, sensors.encoder_bits) : 0.0;
@@ -267,7 +253,7 @@ VirtualHistory record(const RigSystem& rig, Stepper& integ, const Configuration&
 
 }  // namespace
 
-VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
+Record simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
                                 IntegratorStatistics* statistics) {
   const SimulationOptions& options = rig.model().simulation;
   if (options.method == IntegrationMethod::bdf) {
@@ -313,7 +299,7 @@ void MeasurementOptions::validate() const {
   if (!(duration_s > 0)) throw std::invalid_argument("duration must be positive");
 }
 
-std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options) {
+std::vector<std::vector<Record>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options) {
   options.validate();
   std::optional<Linearization> lin;
   Configuration eq;
@@ -325,7 +311,7 @@ std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& r
     eq = e.configuration;
   }
   const auto& initial = rig.model().release.initial;
-  std::vector<std::vector<VirtualHistory>> sets(options.sets);
+  std::vector<std::vector<Record>> sets(options.sets);
   for (int k = 0; k < options.sets; ++k) {
     for (int j = 0; j < options.histories; ++j) {
       if (options.progress) options.progress(k + 1, j + 1);
@@ -333,7 +319,7 @@ std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& r
       req.duration_s = options.duration_s;
       req.noise_seed = noise_seed(options.seed, k + 1, j + 1);
       req.linearization = lin ? &*lin : nullptr;
-      std::vector<std::pair<std::string, std::string>> comments;
+      RecordComments comments;
       if (!initial.empty()) {
         req.initial = initial[static_cast<size_t>(j) % initial.size()];
         comments.emplace_back("release", "initial condition " + std::to_string(j % initial.size() + 1));
@@ -345,8 +331,8 @@ std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& r
                       p.duration_s, p.force.x(), p.force.y(), p.force.z(), p.moment.z());
         comments.emplace_back("release", buf);
       }
-      VirtualHistory h = simulate_history(rig, eq, req);
-      h.comments = comments;
+      Record h = simulate_history(rig, eq, req);
+      h.provenance.comments = comments;
       sets[k].push_back(std::move(h));
     }
   }

@@ -8,37 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "rig/integration.hpp"
 #include "rig/linearization.hpp"
+#include "rig/record.hpp"
 #include "rig/rig_system.hpp"
 
 namespace rigflex::rig {
-
-// What the sensors of the rig recorded during one free swing.
-struct VirtualHistory {
-  Eigen::VectorXd t;                     // s from release
-  Eigen::MatrixXd force, alpha, beta;    // samples x rods
-  std::vector<std::pair<std::string, std::string>> comments;  // how it was made (push, seed, ...)
-};
-
-struct IntegratorStatistics {
-  long steps = 0, rhs_evaluations = 0, jacobian_evaluations = 0, error_test_failures = 0;
-  long linear_setups = 0, newton_iterations = 0;
-};
 
 // A free swing from a state, sampled by a callback at every output time.
 struct SwingOptions {
   double duration_s = 15.0;
   double sample_rate_hz = 500.0;
-};
-
-// The raised-cosine push of the release protocol.
-struct Push {
-  double duration_s = 1.0;
-  Vec3 force = Vec3::Zero();   // peak, G, at the CoG
-  Vec3 moment = Vec3::Zero();  // peak, G
-  ExternalLoad at(double t) const;
-  // at(t) into `storage`, or nullptr after the push (nothing to add).
-  const ExternalLoad* load_at(double t, ExternalLoad& storage) const;
 };
 
 class Integrator {
@@ -83,7 +63,7 @@ struct HistoryRequest {
   // At the equilibrium; for generalized-alpha (computed when absent).
   const Linearization* linearization = nullptr;
 };
-VirtualHistory simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
+Record simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
                                 IntegratorStatistics* statistics = nullptr);
 
 // Draws the push of history `history` of set `set` from `seed` (deterministic).
@@ -100,6 +80,6 @@ struct MeasurementOptions {
 };
 
 // All histories of all sets: sets[k][j] is history j + 1 of set k + 1.
-std::vector<std::vector<VirtualHistory>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options);
+std::vector<std::vector<Record>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options);
 
 }  // namespace rigflex::rig

@@ -34,15 +34,15 @@ using namespace rigflex;
 
 rig::RigModel start_model() { return test::noisy_trifilar(); }
 
-std::vector<rig::VirtualHistory> measure(const rig::RigModel& truth, std::uint64_t seed) {
+std::vector<rig::Record> measure(const rig::RigModel& truth, std::uint64_t seed) {
   rig::MeasurementOptions o;
   o.histories = 6;
   o.seed = seed;
   return rig::simulate_measurement(rig::RigSystem(truth), o).front();
 }
 
-std::vector<const rig::VirtualHistory*> pointers(const std::vector<rig::VirtualHistory>& r) {
-  std::vector<const rig::VirtualHistory*> p;
+std::vector<const rig::Record*> pointers(const std::vector<rig::Record>& r) {
+  std::vector<const rig::Record*> p;
   for (const auto& x : r) p.push_back(&x);
   return p;
 }
@@ -55,7 +55,7 @@ struct Outcome {
 
 // Diagnose, add the top effect's fitted rig block to the model through the
 // rig reader (as a user does with diagnose's effects file), compare again.
-Outcome run_loop(const rig::RigModel& start, const std::vector<rig::VirtualHistory>& data, double true_zG) {
+Outcome run_loop(const rig::RigModel& start, const std::vector<rig::Record>& data, double true_zG) {
   Outcome o;
   o.diagnosis = diagnose::diagnose(start, pointers(data), {}, {});
   const diagnose::ModelComparison before = diagnose::compare_model(diagnose::ResponseModel(start), pointers(data), {}, {});
@@ -194,7 +194,7 @@ TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
 // Real data's defects, each on a record set with a hidden rod length error.
 enum class Defect { mid_swing, sample_rate, dropped_sample, double_noise };
 
-std::vector<rig::VirtualHistory> defective(Defect d) {
+std::vector<rig::Record> defective(Defect d) {
   const rig::RigModel start = start_model();
   rig::RigModel truth = start;
   truth.effects.push_back(hidden_effect(7, start));
@@ -203,7 +203,7 @@ std::vector<rig::VirtualHistory> defective(Defect d) {
     truth.sensors.force_noise_n *= 2;
     truth.sensors.angle_noise_rad *= 2;
   }
-  std::vector<rig::VirtualHistory> data = measure(truth, 400);
+  std::vector<rig::Record> data = measure(truth, 400);
   for (auto& h : data) {
     if (d == Defect::mid_swing) {
       // The logger started 2.3 s into the free swing: the record's first

@@ -25,7 +25,7 @@ struct Errors {
   double cog_plane_worst = 0;
 };
 
-Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<rig::VirtualHistory>>& sets,
+Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<rig::Record>>& sets,
                     identify::IdentificationAlgorithm algorithm) {
   const identify::IdentificationRig idr = identify::identification_rig(model, algorithm);
   const fe::MassProperties& truth = model.body;
@@ -33,7 +33,7 @@ Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<ri
   Errors e;
   std::vector<double> dz;
   for (const auto& set : sets) {
-    std::vector<const rig::VirtualHistory*> ptrs;
+    std::vector<const rig::Record*> ptrs;
     for (const auto& h : set) ptrs.push_back(&h);
     const identify::IdentificationResult r = identify::identify(idr, ptrs, {});
     EXPECT_TRUE(r.observable) << r.message;
@@ -56,7 +56,7 @@ Errors identify_all(const rig::RigModel& model, const std::vector<std::vector<ri
   return e;
 }
 
-std::vector<std::vector<rig::VirtualHistory>> measure(const rig::RigModel& model) {
+std::vector<std::vector<rig::Record>> measure(const rig::RigModel& model) {
   rig::MeasurementOptions o;
   o.sets = 9;
   o.histories = 6;

@@ -179,7 +179,7 @@ TEST(CliRig, SimulateWritesMeasurementFilesOfTheSpec) {
     EXPECT_EQ(line, "t,F1,F2,F3,alpha1,beta1,alpha2,beta2,alpha3,beta3");
     EXPECT_EQ(text.find('\r'), std::string::npos);
     // The spec-strict reader takes it for a 3-rod rig.
-    const rigflex::io::TimeHistory h = rigflex::io::read_time_history(file, 3);
+    const rigflex::rig::Record h = rigflex::io::read_record_csv(file, 3);
     EXPECT_EQ(h.comment("rig"), "small-rig");
     EXPECT_EQ(h.comment("sample_rate_hz"), "250");
     EXPECT_EQ(h.comment("seed"), "3");

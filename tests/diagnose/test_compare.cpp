@@ -15,7 +15,7 @@ using namespace rigflex;
 
 rig::RigModel noisy_trifilar() { return test::noisy_trifilar(); }
 
-rig::VirtualHistory pushed(const rig::RigSystem& sys, int history, std::uint64_t seed = 7) {
+rig::Record pushed(const rig::RigSystem& sys, int history, std::uint64_t seed = 7) {
   const rig::Linearization lin = rig::linearize(sys);
   rig::HistoryRequest req;
   req.push = rig::draw_push(sys, seed, 0, history);
@@ -67,7 +67,7 @@ TEST(Compare, SwingStateFoundBackFromNoiseFreeData) {
   const diagnose::ResponseModel rm(noisy_trifilar());
   diagnose::SwingState truth;
   truth << 0.02, -0.01, 0.03, 0.05, 0.02, -0.04;
-  rig::VirtualHistory h;
+  rig::Record h;
   h.t = Eigen::VectorXd::LinSpaced(3001, 0.0, 6.0);
   const Eigen::MatrixXd y = diagnose::predict_channels(rm, truth, h.t);
   h.force = y.leftCols(3);
@@ -102,21 +102,21 @@ TEST(Compare, OwnNoisyRecordIsMatchedToTheNoise) {
 
 TEST(Compare, RecordsThatCannotComeFromTheRigAreRefused) {
   const diagnose::ResponseModel rm(noisy_trifilar());
-  rig::VirtualHistory h = pushed(rm.system, 0);
-  rig::VirtualHistory up = h;
+  rig::Record h = pushed(rm.system, 0);
+  rig::Record up = h;
   up.beta(10, 1) = 2.0;  // rad: the rod above its joint
   try {
     diagnose::compare_history(rm, up, "up", {});
     FAIL() << "no error";
-  } catch (const identify::RecordError& e) {
+  } catch (const rig::RecordError& e) {
     EXPECT_EQ(e.sample(), 10);
     EXPECT_EQ(e.channel(), "beta2");
   }
-  rig::VirtualHistory deg = h;
+  rig::Record deg = h;
   deg.alpha *= 180.0 / std::numbers::pi;  // degrees: the joints no longer form the frame
   deg.beta *= 180.0 / std::numbers::pi;
-  EXPECT_THROW(diagnose::compare_history(rm, deg, "deg", {}), identify::RecordError);
-  rig::VirtualHistory two = h;
+  EXPECT_THROW(diagnose::compare_history(rm, deg, "deg", {}), rig::RecordError);
+  rig::Record two = h;
   two.force = h.force.leftCols(2);
   EXPECT_THROW(diagnose::compare_history(rm, two, "two", {}), std::invalid_argument);
 }

@@ -317,7 +317,7 @@ TEST(IdentificationRodMass, HeavyRodsAtRestLeaveTheSystemsWeightAndItsMoment) {
   const rig::Equilibrium eq = rig::static_equilibrium(sys);
   ASSERT_TRUE(eq.converged) << eq.message;
   const rig::SensorSample s = rig::read_sensors(sys, eq.configuration, sys.at_rest(), 0.0);
-  rig::VirtualHistory record;
+  rig::Record record;
   record.t = Eigen::VectorXd::LinSpaced(2, 0.0, 0.002);
   record.force = s.force.transpose().replicate(2, 1);
   record.alpha = s.alpha.transpose().replicate(2, 1);

@@ -122,14 +122,14 @@ TEST(MeasurementSets, FolderOfSetsFilesAndSetFolders) {
   EXPECT_EQ(std::filesystem::path(a.names[0]).filename(), "set1");
   EXPECT_EQ(std::filesystem::path(a.names[1]).filename(), "set2");
   EXPECT_EQ(std::filesystem::path(a.names[2]).filename(), "set10");
-  EXPECT_EQ(a.sets[2].histories.size(), 2u);
-  EXPECT_EQ(a.sets[0].histories[0].header_line, 1);
+  EXPECT_EQ(a.sets[2].records.size(), 2u);
+  EXPECT_EQ(a.sets[0].records[0].provenance.first_sample_line, 2);  // header on line 1
 
   const io::MeasurementSets b =
       io::read_measurement_sets({dir.path() / "meas" / "set2", dir.path() / "loose1.csv", dir.path() / "loose2.csv"}, 3);
   ASSERT_EQ(b.sets.size(), 2u);
   EXPECT_EQ(b.names[1], "files");
-  EXPECT_EQ(b.sets[1].histories.size(), 2u);
+  EXPECT_EQ(b.sets[1].records.size(), 2u);
 }
 
 TEST(MeasurementSets, MissingPathsEmptyFoldersAndRodCountsAreNamed) {

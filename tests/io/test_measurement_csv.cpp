@@ -25,7 +25,7 @@ namespace rigflex {
 namespace {
 
 namespace fs = std::filesystem;
-using io::TimeHistory;
+using rig::Record;
 
 using test::read_text;
 using test::write_text;
@@ -36,9 +36,9 @@ std::set<std::string> entries(const fs::path& dir) {
   return out;
 }
 
-TimeHistory parse(const std::string& text, int expected_rods = 0) {
+Record parse(const std::string& text, int expected_rods = 0) {
   std::istringstream in(text);
-  return io::parse_time_history(in, "h1.csv", expected_rods);
+  return io::parse_record_csv(in, "h1.csv", expected_rods);
 }
 
 // The error of parsing `text`; fails the test if there is none.
@@ -153,10 +153,10 @@ class Awkward {
 };
 
 // Awkward values everywhere except time, which must increase: awkward steps.
-TimeHistory awkward_history(int rods, int samples) {
+Record awkward_history(int rods, int samples) {
   Awkward a;
-  TimeHistory h;
-  h.comments = {{"sample_rate_hz", "500"}, {"body", "light-truck"}, {"note", "a: b, c"}, {"empty", ""}};
+  Record h;
+  h.provenance.comments = {{"sample_rate_hz", "500"}, {"body", "light-truck"}, {"note", "a: b, c"}, {"empty", ""}};
   h.t.resize(samples);
   h.t(0) = -std::numeric_limits<double>::denorm_min();
   for (int i = 1; i < samples; ++i)
@@ -182,8 +182,8 @@ void expect_bits_equal(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, const
     }
 }
 
-void expect_same(const TimeHistory& a, const TimeHistory& b) {
-  EXPECT_EQ(a.comments, b.comments);
+void expect_same(const Record& a, const Record& b) {
+  EXPECT_EQ(a.provenance.comments, b.provenance.comments);
   expect_bits_equal(a.t, b.t, "t");
   expect_bits_equal(a.force, b.force, "force");
   expect_bits_equal(a.alpha, b.alpha, "alpha");
@@ -195,29 +195,29 @@ void expect_same(const TimeHistory& a, const TimeHistory& b) {
 TEST(TimeHistoryCsv, RoundTripIsBitExact) {
   test::TempDir dir("rigflex-measurement");
   for (const int rods : {4, 3}) {
-    const TimeHistory h = awkward_history(rods, 40);
+    const Record h = awkward_history(rods, 40);
     const fs::path file = dir.path() / ("h" + std::to_string(rods) + ".csv");
-    io::write_time_history(file, h);
-    const TimeHistory back = io::read_time_history(file);
+    io::write_record_csv(file, h);
+    const Record back = io::read_record_csv(file);
     EXPECT_EQ(back.rods(), rods);
     EXPECT_EQ(back.samples(), 40);
     expect_same(h, back);
-    EXPECT_EQ(io::read_time_history(file, rods).samples(), 40);
+    EXPECT_EQ(io::read_record_csv(file, rods).samples(), 40);
     // Deterministic: the file is the formatted text, the same every time.
-    EXPECT_EQ(read_text(file), io::format_time_history(h));
-    EXPECT_EQ(io::format_time_history(back), io::format_time_history(h));
+    EXPECT_EQ(read_text(file), io::format_record_csv(h));
+    EXPECT_EQ(io::format_record_csv(back), io::format_record_csv(h));
   }
   EXPECT_EQ(entries(dir.path()), (std::set<std::string>{"h3.csv", "h4.csv"}));  // no temporary left
 }
 
 TEST(TimeHistoryCsv, FormatIsTheContractsLayoutWithShortestNumbers) {
-  TimeHistory h;
-  h.comments = {{"sample_rate_hz", "500"}, {"empty", ""}};
+  Record h;
+  h.provenance.comments = {{"sample_rate_hz", "500"}, {"empty", ""}};
   h.t = Eigen::Vector2d(0.0, 0.002);
   h.force = Eigen::MatrixXd{{1500.25, 1e22, -0.0}, {0.1, 1.0 / 3, 5e-324}};
   h.alpha = Eigen::MatrixXd{{0.01, 0.02, 0.03}, {-0.01, -0.02, -0.03}};
   h.beta = Eigen::MatrixXd{{1, 2, 3}, {4, 5, 6}};
-  EXPECT_EQ(io::format_time_history(h),
+  EXPECT_EQ(io::format_record_csv(h),
             "# sample_rate_hz: 500\n"
             "# empty:\n"
             "t,F1,F2,F3,alpha1,beta1,alpha2,beta2,alpha3,beta3\n"
@@ -227,7 +227,7 @@ TEST(TimeHistoryCsv, FormatIsTheContractsLayoutWithShortestNumbers) {
 
 TEST(TimeHistoryCsv, ReadsTheSampleTable) {
   const Table table = sample_table(4, 3);
-  const TimeHistory h = parse(table.text());
+  const Record h = parse(table.text());
   EXPECT_EQ(h.rods(), 4);
   EXPECT_EQ(h.samples(), 3);
   EXPECT_EQ(h.t(2), 0.004);
@@ -247,7 +247,7 @@ TEST(TimeHistoryCsv, ThreeAndFourRodsInferredOrExpected) {
 
 TEST(TimeHistoryCsv, ColumnsInAnyOrderAndUnknownColumnsIgnored) {
   const Table table = sample_table(4, 6);
-  const TimeHistory reference = parse(table.text());
+  const Record reference = parse(table.text());
   Table shuffled = table;
   shuffled.add_column("temperature", "warm");  // not a number: never read
   shuffled.add_column("F01", "x");             // not a contract name either
@@ -274,14 +274,14 @@ TEST(TimeHistoryCsv, CommentsParsed) {
                     "# : no key",
                     "# sample_rate_hz: 1000",
                     "# Größe: ü"};
-  const TimeHistory h = parse(table.text());
+  const Record h = parse(table.text());
   const std::vector<std::pair<std::string, std::string>> expected = {{"sample_rate_hz", "500"},
                                                                      {"body", "light-truck"},
                                                                      {"operator", "J. Doe"},
                                                                      {"url", "http://rig:8080/log"},
                                                                      {"sample_rate_hz", "1000"},
                                                                      {"Größe", "ü"}};
-  EXPECT_EQ(h.comments, expected);
+  EXPECT_EQ(h.provenance.comments, expected);
   EXPECT_EQ(h.comment("sample_rate_hz"), "500");  // the first of repeated keys
   EXPECT_EQ(h.comment("body"), "light-truck");
   EXPECT_EQ(h.comment("absent"), "");
@@ -290,7 +290,7 @@ TEST(TimeHistoryCsv, CommentsParsed) {
 
 TEST(TimeHistoryCsv, WindowsLineEndingsBomBlanksAndTrailingBlankLines) {
   const Table table = sample_table(4, 4);
-  const TimeHistory reference = parse(table.text());
+  const Record reference = parse(table.text());
   Table spaced = table;
   spaced.at(1, "F2") = "+" + spaced.at(1, "F2");  // some loggers write a '+'
   for (auto& f : spaced.header) f = " " + f + "\t";
@@ -298,7 +298,7 @@ TEST(TimeHistoryCsv, WindowsLineEndingsBomBlanksAndTrailingBlankLines) {
     for (auto& f : row) f = "  " + f + " ";
   const std::string text = "\xEF\xBB\xBF" + spaced.text("\r\n") + "\r\n  \r\n\n";
   expect_same(parse(text), reference);
-  EXPECT_EQ(parse("\xEF\xBB\xBF" + table.text()).comments, reference.comments);
+  EXPECT_EQ(parse("\xEF\xBB\xBF" + table.text()).provenance.comments, reference.provenance.comments);
 }
 
 // ---------------------------------------------------------------- errors: file, line, column
@@ -411,7 +411,7 @@ TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
   table.at(1, "alpha2") = "n/a";
   write_text(file, table.text());
   try {
-    io::read_time_history(file);
+    io::read_record_csv(file);
     ADD_FAILURE() << "no error";
   } catch (const io::InputError& e) {
     EXPECT_EQ(e.file(), file.string());
@@ -420,7 +420,7 @@ TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
     EXPECT_EQ(std::string(e.what()), file.string() + ":5: key 'alpha2': value 'n/a' is not a number");
   }
   try {
-    io::read_time_history(dir.path() / "absent.csv");
+    io::read_record_csv(dir.path() / "absent.csv");
     ADD_FAILURE() << "no error";
   } catch (const io::InputError& e) {
     EXPECT_EQ(e.line(), 0);
@@ -433,40 +433,40 @@ TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
 TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
   test::TempDir dir("rigflex-measurement");
   const fs::path file = dir.path() / "sub" / "h1.csv";
-  const TimeHistory good = awkward_history(4, 5);
-  const std::vector<std::pair<std::string, std::function<void(TimeHistory&)>>> breakages = {
-      {"no samples", [](TimeHistory& h) { h = TimeHistory{}; }},
-      {"alpha is 5 x 4, expected 5 x 3", [](TimeHistory& h) { h.force.conservativeResize(5, 3); }},
-      {"alpha is 4 x 4", [](TimeHistory& h) { h.alpha.conservativeResize(4, 4); }},
-      {"beta is 5 x 3", [](TimeHistory& h) { h.beta.conservativeResize(5, 3); }},
-      {"F3 of sample 2 is nan", [](TimeHistory& h) { h.force(1, 2) = std::nan(""); }},
-      {"alpha1 of sample 5 is inf", [](TimeHistory& h) { h.alpha(4, 0) = std::numeric_limits<double>::infinity(); }},
-      {"beta4 of sample 1 is -inf", [](TimeHistory& h) { h.beta(0, 3) = -std::numeric_limits<double>::infinity(); }},
-      {"t of sample 3 is nan", [](TimeHistory& h) { h.t(2) = std::nan(""); }},
-      {"t of sample 4", [](TimeHistory& h) { h.t(3) = h.t(2); }},
-      {"empty key", [](TimeHistory& h) { h.comments.push_back({"", "x"}); }},
-      {"contains ':'", [](TimeHistory& h) { h.comments.push_back({"a:b", "x"}); }},
-      {"line break", [](TimeHistory& h) { h.comments.push_back({"a", "x\ny"}); }},
-      {"blanks", [](TimeHistory& h) { h.comments.push_back({"a", " x"}); }},
-      {"UTF-8", [](TimeHistory& h) { h.comments.push_back({"a", "M\xFCller"}); }}};
+  const Record good = awkward_history(4, 5);
+  const std::vector<std::pair<std::string, std::function<void(Record&)>>> breakages = {
+      {"no samples", [](Record& h) { h = Record{}; }},
+      {"alpha is 5 x 4, expected 5 x 3", [](Record& h) { h.force.conservativeResize(5, 3); }},
+      {"alpha is 4 x 4", [](Record& h) { h.alpha.conservativeResize(4, 4); }},
+      {"beta is 5 x 3", [](Record& h) { h.beta.conservativeResize(5, 3); }},
+      {"F3 of sample 2 is nan", [](Record& h) { h.force(1, 2) = std::nan(""); }},
+      {"alpha1 of sample 5 is inf", [](Record& h) { h.alpha(4, 0) = std::numeric_limits<double>::infinity(); }},
+      {"beta4 of sample 1 is -inf", [](Record& h) { h.beta(0, 3) = -std::numeric_limits<double>::infinity(); }},
+      {"t of sample 3 is nan", [](Record& h) { h.t(2) = std::nan(""); }},
+      {"t of sample 4", [](Record& h) { h.t(3) = h.t(2); }},
+      {"empty key", [](Record& h) { h.provenance.comments.push_back({"", "x"}); }},
+      {"contains ':'", [](Record& h) { h.provenance.comments.push_back({"a:b", "x"}); }},
+      {"line break", [](Record& h) { h.provenance.comments.push_back({"a", "x\ny"}); }},
+      {"blanks", [](Record& h) { h.provenance.comments.push_back({"a", " x"}); }},
+      {"UTF-8", [](Record& h) { h.provenance.comments.push_back({"a", "M\xFCller"}); }}};
   for (const auto& [words, breakage] : breakages) {
-    TimeHistory h = good;
+    Record h = good;
     breakage(h);
     try {
-      io::write_time_history(file, h);
+      io::write_record_csv(file, h);
       ADD_FAILURE() << "no error: " << words;
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
-    EXPECT_THROW(io::format_time_history(h), std::invalid_argument) << words;
+    EXPECT_THROW(io::format_record_csv(h), std::invalid_argument) << words;
     EXPECT_TRUE(entries(dir.path()).empty()) << words;
   }
   // An earlier file stays as it was.
-  io::write_time_history(file, good);
+  io::write_record_csv(file, good);
   const std::string before = read_text(file);
-  TimeHistory bad = good;
+  Record bad = good;
   bad.beta(2, 2) = std::nan("");
-  EXPECT_THROW(io::write_time_history(file, bad), std::invalid_argument);
+  EXPECT_THROW(io::write_record_csv(file, bad), std::invalid_argument);
   EXPECT_EQ(read_text(file), before);
   EXPECT_EQ(entries(file.parent_path()), std::set<std::string>{"h1.csv"});
 }
@@ -487,11 +487,11 @@ TEST(MeasurementSet, NaturalOrderAndOnlyCsvFiles) {
   std::vector<std::string> order;
   for (const auto& f : set.files) order.push_back(f.filename().string());
   EXPECT_EQ(order, (std::vector<std::string>{"h1.csv", "h2.csv", "h02b.csv", "h3.CSV", "h9.csv", "h10.csv"}));
-  ASSERT_EQ(set.histories.size(), set.files.size());
+  ASSERT_EQ(set.records.size(), set.files.size());
   for (size_t i = 0; i < set.files.size(); ++i) {
     const auto at = std::find(names.begin(), names.end(), order[i]) - names.begin();
-    EXPECT_EQ(set.histories[i].samples(), 3 + at) << order[i];
-    EXPECT_EQ(set.histories[i].rods(), 4);
+    EXPECT_EQ(set.records[i].samples(), 3 + at) << order[i];
+    EXPECT_EQ(set.records[i].rods(), 4);
   }
   EXPECT_EQ(io::read_measurement_set(dir.path(), 4).files, set.files);
 }
@@ -536,6 +536,53 @@ TEST(MeasurementSet, EmptyOrMissingFolder) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
   }
+}
+
+// The record keeps where it came from: the file, the line of its first
+// sample and the comments; a record error on sample k names line
+// first_sample_line + k of that file.
+TEST(RecordProvenance, FileLinesAndCommentsOfARecordRead) {
+  Table table = sample_table(3, 4);
+  table.comments = {"# sample_rate_hz: 500", "# remark without a key", "# body: light-truck"};
+  const Record h = parse(table.text());
+  EXPECT_EQ(h.provenance.file, "h1.csv");
+  EXPECT_EQ(h.provenance.first_sample_line, table.row_line(0));
+  EXPECT_EQ(h.provenance.line_of(2), table.row_line(2));
+  EXPECT_EQ(h.provenance.line_of(-1), 0);
+  EXPECT_EQ(h.comment("body"), "light-truck");
+  EXPECT_EQ(h.sample_rate_hz, 500.0);
+
+  const std::vector<Record> records = {Record{}, h};
+  rig::RecordError e(3, "alpha2", "impossible angle");
+  e.set_history(1);
+  const io::InputError located = io::record_input_error(records, e);
+  EXPECT_EQ(located.file(), "h1.csv");
+  EXPECT_EQ(located.line(), table.row_line(3));
+  EXPECT_EQ(located.key(), "alpha2");
+  EXPECT_EQ(located.reason(), "impossible angle");
+  // A whole-record error names the file without a line; a record not read
+  // from a file, or an unknown history, names no file.
+  rig::RecordError whole(-1, "", "wrong rods");
+  whole.set_history(1);
+  EXPECT_EQ(io::record_input_error(records, whole).line(), 0);
+  EXPECT_EQ(io::record_input_error(records, whole).file(), "h1.csv");
+  e.set_history(0);
+  EXPECT_EQ(io::record_input_error(records, e).file(), "(a measurement)");
+  e.set_history(7);
+  EXPECT_EQ(io::record_input_error(records, e).file(), "(a measurement)");
+}
+
+// Without a sample_rate_hz comment the nominal rate comes from the time stamps.
+TEST(RecordProvenance, SampleRateFromTheTimeStampsWithoutAComment) {
+  Table table = sample_table(3, 5);
+  table.comments.clear();
+  const Record h = parse(table.text());
+  EXPECT_TRUE(h.provenance.comments.empty());
+  EXPECT_NEAR(h.sample_rate_hz, 500.0, 1e-9);
+  Eigen::VectorXd one(1);
+  one << 0.0;
+  EXPECT_EQ(rig::nominal_sample_rate(one, {}), 0.0);
+  EXPECT_NEAR(rig::nominal_sample_rate(h.t, {{"sample_rate_hz", "not a number"}}), 500.0, 1e-9);
 }
 
 }  // namespace

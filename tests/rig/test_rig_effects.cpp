@@ -58,7 +58,7 @@ std::vector<Peak> half_cycle_peaks(const Eigen::VectorXd& t, const Eigen::Vector
 
 // The sideways lean u_x of rod `rod`, rebuilt from its encoders (as a user of
 // the measurement files would): sin of the swing angle for a sway along x.
-Eigen::VectorXd lean_x(const rig::RigModel& model, const rig::VirtualHistory& h, int rod = 0) {
+Eigen::VectorXd lean_x(const rig::RigModel& model, const rig::Record& h, int rod = 0) {
   Eigen::VectorXd ux(h.t.size());
   for (Eigen::Index k = 0; k < h.t.size(); ++k) {
     ux(k) = rig::rod_direction(model.geometry.rods[rod].encoder_axis, {h.alpha(k, rod), h.beta(k, rod)}).x();
@@ -74,7 +74,7 @@ std::vector<Peak> sway_peaks(const rig::RigModel& model, double x0, double durat
   rig::HistoryRequest req;
   req.initial = rig::InitialCondition{x0, 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
   req.duration_s = duration;
-  const rig::VirtualHistory h = rig::simulate_history(rig, eq.configuration, req);
+  const rig::Record h = rig::simulate_history(rig, eq.configuration, req);
   return half_cycle_peaks(h.t, lean_x(model, h));
 }
 
@@ -419,7 +419,7 @@ TEST(RigEffects, RodMassActsAsAThirdAtTheLowerJointAndHalfItsWeight) {
 namespace {
 
 // A swing with sway and yaw (every encoder and load cell moves), noise off.
-rig::VirtualHistory measured_swing(const rig::RigModel& model) {
+rig::Record measured_swing(const rig::RigModel& model) {
   const rig::RigSystem rig(model);
   const rig::Equilibrium eq = rig::static_equilibrium(rig);
   EXPECT_TRUE(eq.converged) << eq.message;
@@ -446,8 +446,8 @@ TEST(RigEffects, EncoderOffsetShiftsTheAnglesByExactlyTheOffset) {
   rig::RigModel off = base;
   const std::vector<double> da = {0.01, -0.02, 0.005}, db = {-0.003, 0.0, 0.015};
   off.effects.push_back(std::make_shared<rig::EncoderOffset>(da, db));
-  const rig::VirtualHistory h0 = measured_swing(base);
-  const rig::VirtualHistory h1 = measured_swing(off);
+  const rig::Record h0 = measured_swing(base);
+  const rig::Record h1 = measured_swing(off);
   ASSERT_EQ(h0.t.size(), h1.t.size());
   EXPECT_GT(h0.alpha.col(0).maxCoeff() - h0.alpha.col(0).minCoeff(), 1e-3);  // it moves
   EXPECT_GT(h0.beta.col(0).maxCoeff() - h0.beta.col(0).minCoeff(), 1e-3);
@@ -471,8 +471,8 @@ TEST(RigEffects, LoadCellGainScalesAndOffsetsTheForcesExactly) {
   rig::RigModel cal = base;
   const std::vector<double> gain = {1.02, 0.97, 1.0}, offset = {15.0, -8.0, 0.0};
   cal.effects.push_back(std::make_shared<rig::LoadCellGain>(gain, offset));
-  const rig::VirtualHistory h0 = measured_swing(base);
-  const rig::VirtualHistory h1 = measured_swing(cal);
+  const rig::Record h0 = measured_swing(base);
+  const rig::Record h1 = measured_swing(cal);
   ASSERT_EQ(h0.t.size(), h1.t.size());
   EXPECT_GT(h0.force.col(0).maxCoeff() - h0.force.col(0).minCoeff(), 1.0);  // the forces swing (N)
   double worst = 0;

@@ -71,7 +71,7 @@ TEST(RigSimulation, FreeSwingFrequenciesMatchLinearization) {
   rig::HistoryRequest yaw;
   yaw.initial = rig::InitialCondition{0.0, 0.0, 0.004, Vec3::Zero(), Vec3::Zero()};
   yaw.duration_s = 12.0;
-  const rig::VirtualHistory h = rig::simulate_history(rig, lin.equilibrium.configuration, yaw);
+  const rig::Record h = rig::simulate_history(rig, lin.equilibrium.configuration, yaw);
   // Yaw moves each rod tangentially: the encoder about the radial axis a_i reads it (alpha).
   const double f_yaw = crossing_frequency(h.t, h.alpha.col(0));
   const double f_lin_yaw = test::swing_frequency_along(lin, 5);
@@ -79,7 +79,7 @@ TEST(RigSimulation, FreeSwingFrequenciesMatchLinearization) {
   rig::HistoryRequest sway;
   sway.initial = rig::InitialCondition{0.02, 0.0, 0.0, Vec3::Zero(), Vec3::Zero()};
   sway.duration_s = 12.0;
-  const rig::VirtualHistory hs = rig::simulate_history(rig, lin.equilibrium.configuration, sway);
+  const rig::Record hs = rig::simulate_history(rig, lin.equilibrium.configuration, sway);
   // The sideways lean of rod 1, rebuilt from its encoders.
   Eigen::VectorXd ux(hs.t.size());
   for (Eigen::Index k = 0; k < hs.t.size(); ++k) {
@@ -143,9 +143,9 @@ TEST(RigSimulation, GeneralizedAlphaMatchesATightBdfRun) {
   req.duration_s = 8.0;
   req.linearization = &lin;
   rig::IntegratorStatistics stats;
-  const rig::VirtualHistory a = rig::simulate_history(rig, lin.equilibrium.configuration, req, &stats);
+  const rig::Record a = rig::simulate_history(rig, lin.equilibrium.configuration, req, &stats);
   req.linearization = nullptr;
-  const rig::VirtualHistory b = rig::simulate_history(ref, lin.equilibrium.configuration, req);
+  const rig::Record b = rig::simulate_history(ref, lin.equilibrium.configuration, req);
   const double h = rig::generalized_alpha_step(lin, 500.0);
   EXPECT_EQ(stats.steps, std::lround(9.0 / h));
   // Bound: generalized-alpha's period error, |dT / T| <= (omega h)^2 / 6 for
@@ -209,7 +209,7 @@ TEST(RigSimulation, GeneralizedAlphaResolvesTheRodBounce) {
   req.push = rig::Push{0.02, Vec3(0, 0, 0.5 * 400.0), Vec3::Zero()};
   req.duration_s = 1.0;
   req.linearization = &lin;
-  const rig::VirtualHistory h = rig::simulate_history(rig, lin.equilibrium.configuration, req);
+  const rig::Record h = rig::simulate_history(rig, lin.equilibrium.configuration, req);
   Eigen::VectorXd total = h.force.rowwise().sum();
   EXPECT_NEAR(crossing_frequency(h.t, total), f_bounce, 0.005 * f_bounce);
   EXPECT_NEAR(rig::generalized_alpha_step(lin, 500.0, 0.0), 0.002 / std::ceil(0.002 * 30 * f_bounce - 1e-9), 1e-15);
