@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "diagnose/effect_candidates.hpp"
-#include "rig/effects.hpp"
+#include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
 #include "identify/identification_kinematics.hpp"
 #include "rig/parallel_for.hpp"
@@ -31,9 +31,7 @@ void DiagnosisOptions::validate() const {
   }
   if (!(noise_excess >= 0)) throw std::invalid_argument("noise_excess: must be >= 0");
   for (const auto& e : effects) {
-    bool known = false;
-    for (const char* n : rig::effect_names()) known = known || e == n;
-    if (!known) throw std::invalid_argument("effects: unknown effect '" + e + "'");
+    if (!rig::find_effect_kind(e)) throw std::invalid_argument("effects: unknown effect '" + e + "'");
   }
 }
 
