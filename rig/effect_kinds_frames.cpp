@@ -14,7 +14,7 @@ using R = ParameterReader;
 // the check of a file's keys.
 std::vector<ParameterSpec> frame_parameters(const std::string& joint_compliance_doc) {
   return {
-      {"reduced", ParameterShape::text, "", -INFINITY, INFINITY, false, "", "folder of a `rigflex reduce` export; or"},
+      {"reduced", ParameterShape::text, "", -INFINITY, INFINITY, false, "", "folder of a `rigflex reduce` export (or `model`)"},
       {"model", ParameterShape::text, "", -INFINITY, INFINITY, false, "", "frame model file, reduced on reading"},
       {"interface", ParameterShape::text, "", -INFINITY, INFINITY, false, "", "the model's node set at the joints"},
       {"method", ParameterShape::text, "", -INFINITY, INFINITY, false, "guyan", "guyan or craig-bampton"},
@@ -178,7 +178,7 @@ EffectKind fixed_frame_flexibility() {
   k.hook = EffectHook::build;
   k.equations = "the fixed frame reduced onto the upper joints, grounded: its K, M, C join the rig's equations";
   k.signature = "deformation modes of the frame; the check's fixed-frame share";
-  k.parameters = frame_parameters("or instead `{joints: [[cx, cy, cz] per rod], sway: [sx, sy], twist}`: "
+  k.parameters = frame_parameters("instead of files: `{joints: [[cx, cy, cz] per rod], sway: [sx, sy], twist}`, "
                                   "compliances in m/N, twist in rad/(N m)");
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     if (e["joint_compliance"].defined()) return fixed_joint_compliance(e, x);
@@ -197,7 +197,7 @@ EffectKind carrying_frame_flexibility() {
   k.equations = "the carrying frame reduced free-free onto the lower joints, in modal coordinates about its mean "
                 "axes: the joints move with its elastic modes";
   k.signature = "carrying-frame modes";
-  k.parameters = frame_parameters("or instead `{translation: [cx, cy, cz], rocking: [rx, ry]}`: "
+  k.parameters = frame_parameters("instead of files: `{translation: [cx, cy, cz], rocking: [rx, ry]}`, "
                                   "m/N, rocking in rad/(N m)");
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     if (e["joint_compliance"].defined()) return carrying_joint_compliance(e, x);

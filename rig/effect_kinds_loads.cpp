@@ -94,11 +94,11 @@ EffectKind joint_friction() {
   EffectKind k;
   k.name = "joint_friction";
   k.hook = EffectHook::add_loads;
-  k.equations = "torque -(c w + mu w / sqrt(|w|^2 + eps^2)) in each Hooke's joint against the rod's relative swing "
+  k.equations = "torque -(c w + mu w / sqrt(w.w + eps^2)) in each Hooke's joint against the rod's relative swing "
                 "rate w, balanced by transverse end forces on the rod";
   k.signature = "Coulomb: amplitude decays linearly; viscous: exponentially";
   k.parameters = {
-      {"viscous", ParameterShape::number, "N m s/rad", 0, inf, false, "0", "c; `viscous` and/or `coulomb`"},
+      {"viscous", ParameterShape::number, "N m s/rad", 0, inf, false, "0", "c (`viscous` and/or `coulomb`)"},
       {"coulomb", ParameterShape::number, "N m", 0, inf, false, "0", "mu"},
       {"regularization", ParameterShape::number, "rad/s", 0, inf, true, "0.001",
        "eps: below it Coulomb friction turns viscous"},
@@ -114,11 +114,11 @@ EffectKind air_drag() {
   EffectKind k;
   k.name = "air_drag";
   k.hook = EffectHook::add_loads;
-  k.equations = "force -1/2 rho CdA |v| v on the body at the drag centre and moment -c_rot |w| w";
+  k.equations = "force -1/2 rho CdA norm(v) v on the body at the drag centre and moment -c_rot norm(w) w";
   k.signature = "large swings decay faster";
   k.parameters = {
       {"density", ParameterShape::number, "kg/m^3", 0, inf, true, "1.2", "air density"},
-      {"cd_area", ParameterShape::number, "m^2", 0, inf, false, "0", "drag coefficient x frontal area; and/or"},
+      {"cd_area", ParameterShape::number, "m^2", 0, inf, false, "0", "drag coefficient x frontal area (`cd_area` and/or `rotational`)"},
       {"rotational", ParameterShape::number, "N m s^2/rad^2", 0, inf, false, "0", "rotational drag"},
       {"centre", ParameterShape::vec3, "m", -inf, inf, false, "the CoG", "drag centre in frame c"},
   };

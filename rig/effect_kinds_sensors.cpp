@@ -87,7 +87,7 @@ EffectKind load_cell_gain() {
   k.equations = "load cell i reads gain_i F_i + offset_i (the identifier inverts a known one)";
   k.signature = "F' = g F + o";
   k.parameters = {
-      {"gain", ParameterShape::per_rod, "1", 0, inf, true, "1", "gain of each load cell; and/or"},
+      {"gain", ParameterShape::per_rod, "1", 0, inf, true, "1", "gain of each load cell (`gain` and/or `offset`)"},
       {"offset", ParameterShape::per_rod, "N", -inf, inf, false, "0", "offset of each load cell"},
   };
   k.parse = parse_load_cell_gain;

@@ -100,8 +100,8 @@ EffectKind rod_compliance() {
   k.equations = "each rod an axial spring between its joints (without it the rods are rigid)";
   k.signature = "bounce mode at sqrt(sum k / m) / 2 pi (vertical rods)";
   k.parameters = {
-      {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "", "axial stiffness; or"},
-      {"youngs_modulus", ParameterShape::number, "Pa", 0, inf, true, "", "with `area`: EA/L"},
+      {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "", "axial stiffness (or `youngs_modulus` and `area`)"},
+      {"youngs_modulus", ParameterShape::number, "Pa", 0, inf, true, "", "E of EA/L"},
       {"area", ParameterShape::per_rod, "m^2", 0, inf, true, "", "the rods' cross-section"},
   };
   k.parse = parse_rod_compliance;
