@@ -12,6 +12,7 @@
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
 #include "io/atomic_file.hpp"
+#include "io/effects_file.hpp"
 #include "report/compare_json.hpp"
 #include "report/reports.hpp"
 #include "io/rig_reader.hpp"
@@ -30,14 +31,14 @@ struct DiagnoseArgs {
   bool quiet = false;
 };
 
+// The fitted effect as an effects file, saying how well it fits and what
+// to add to the model instead.
 std::string effects_file_text(const diagnose::EffectFit& e) {
-  std::ostringstream s;
-  s << "# Fitted by rigflex diagnose: explains " << e.explained_fraction * 100 << " % of the residual"
-    << (e.significant ? " (significant)" : " (not significant)") << (e.plausible ? "" : "; IMPLAUSIBLE values")
-    << ".\n# " << e.advice << ".\neffects:\n";
-  std::istringstream lines(e.rig_block);
-  for (std::string line; std::getline(lines, line);) s << "  " << line << "\n";
-  return s.str();
+  std::ostringstream fitted;
+  fitted << "Fitted by rigflex diagnose: explains " << e.explained_fraction * 100 << " % of the residual"
+         << (e.significant ? " (significant)" : " (not significant)") << (e.plausible ? "" : "; IMPLAUSIBLE values")
+         << ".";
+  return io::effects_file_text({fitted.str(), e.advice + "."}, e.rig_block);
 }
 
 int run(const DiagnoseArgs& a) {

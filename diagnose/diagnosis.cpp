@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "diagnose/effect_candidates.hpp"
-#include "rig/effects.hpp"
+#include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
 #include "identify/identification_kinematics.hpp"
 #include "rig/parallel_for.hpp"
@@ -31,9 +31,7 @@ void DiagnosisOptions::validate() const {
   }
   if (!(noise_excess >= 0)) throw std::invalid_argument("noise_excess: must be >= 0");
   for (const auto& e : effects) {
-    bool known = false;
-    for (const char* n : rig::effect_names()) known = known || e == n;
-    if (!known) throw std::invalid_argument("effects: unknown effect '" + e + "'");
+    if (!rig::find_effect_kind(e)) throw std::invalid_argument("effects: unknown effect '" + e + "'");
   }
 }
 
@@ -320,20 +318,27 @@ double f_test_p_value(double improvement, double dof1, double residual, double d
   return boost::math::cdf(boost::math::complement(dist, F));
 }
 
-}  // namespace
+// Where every candidate's fit starts: the baseline, the states refitted to
+// the whole record (no parameters), and its one linearization, shared.
+struct Baseline {
+  std::vector<SwingState> initial_states;  // compare's, where a continuation fit starts
+  std::vector<SwingState> states;
+  Residuals r;
+  double rss = 0;
+  std::vector<Eigen::MatrixXd> Js;
+  double dof = 0;  // the F test's residual degrees of freedom before any parameter
+};
 
-Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
-                   const std::vector<std::string>& sources, const DiagnosisOptions& options) {
-  options.validate();
-  if (records.empty()) throw std::invalid_argument("diagnose needs at least one history");
-  auto say = [&](const std::string& s) {
-    if (options.progress) options.progress(s);
-  };
-  const ResponseModel base(model);
+void progress(const DiagnosisOptions& options, const std::string& s) {
+  if (options.progress) options.progress(s);
+}
+
+// compare's result per history and where the starting model fails.
+void compare_histories(const ResponseModel& base, const std::vector<const rig::Record*>& records,
+                       const std::vector<std::string>& sources, const DiagnosisOptions& options, Diagnosis& d) {
   const int H = static_cast<int>(records.size());
-  Diagnosis d;
   d.baseline.resize(records.size());
-  say("fitting the swing states of " + std::to_string(H) + " histories");
+  progress(options, "fitting the swing states of " + std::to_string(H) + " histories");
   rig::parallel_for(H, options.threads, [&](int j) {
     try {
       d.baseline[j] = compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "",
@@ -344,117 +349,133 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     }
   });
   d.baseline_analysis = analyse_residuals(base, d.baseline);
-  std::vector<const BandTarget*> targets;
-  std::vector<SwingState> states;
-  for (const auto& h : d.baseline) {
-    targets.push_back(&h.target);
-    states.push_back(h.fit.state);
-  }
-  Fitter fit(model, base, targets, options.threads);
+}
 
-  const std::vector<SwingState> initial_states = states;
-  // Baseline: the states refitted to the whole record (no parameters).
+// The baseline fit, and the diagnosis' residual, sample count and noise ratio.
+Baseline fit_baseline(Fitter& fit, const ResponseModel& base, const std::vector<const BandTarget*>& targets,
+                      const std::vector<SwingState>& states, const DiagnosisOptions& options, Diagnosis& d) {
+  const int H = fit.histories();
+  Baseline b;
+  b.initial_states = states;
   FitPoint start;
   start.states = states;
   start.r = fit.residuals(base, states);
   start.cost = sum_squares(start.r);
-  say("state sensitivities");
+  progress(options, "state sensitivities");
   const std::vector<Eigen::MatrixXd> none(static_cast<size_t>(H));
-  const FitOutcome baseline = fit_nonlinear(fit, nullptr, start, fit.state_jacobians(base, states, start.r), none, options);
-  states = baseline.at.states;
-  const Residuals r = baseline.at.r;
-  const double rss = baseline.at.cost;
-  // The candidates all start from here: one linearization shared.
-  const std::vector<Eigen::MatrixXd> Js = fit.state_jacobians(base, states, r);
-  d.residual = rss;
+  const FitOutcome o = fit_nonlinear(fit, nullptr, start, fit.state_jacobians(base, states, start.r), none, options);
+  b.states = o.at.states;
+  b.r = o.at.r;
+  b.rss = o.at.cost;
+  b.Js = fit.state_jacobians(base, b.states, b.r);
+  d.residual = b.rss;
   d.samples = 0;
-  for (const auto& x : r) d.samples += static_cast<double>(x.size());
+  for (const auto& x : b.r) d.samples += static_cast<double>(x.size());
   d.independence = 0;
   for (const auto* t : targets) d.independence += t->band.independence() / static_cast<double>(targets.size());
   d.noise_ratio = d.residual / d.samples;
-  const double dof_base = d.independence * (d.samples - 6.0 * H / d.independence);
+  b.dof = d.independence * (d.samples - 6.0 * H / d.independence);
+  return b;
+}
 
-  for (const auto& e : model.effects) d.present.push_back(e->name());
+// The catalogue's effects the model lacks, of those asked for.
+std::vector<EffectCandidate> candidates_to_test(const ResponseModel& base, const std::vector<std::string>& present,
+                                                const DiagnosisOptions& options) {
   const CandidateContext context = candidate_context(base.system, lowest_swing_hz(base));
   std::vector<EffectCandidate> candidates;
   for (auto& c : effect_candidates(context)) {
-    const bool present = std::find(d.present.begin(), d.present.end(), c.effect) != d.present.end();
+    const bool has = std::find(present.begin(), present.end(), c.effect) != present.end();
     const bool wanted = options.effects.empty() ||
                         std::find(options.effects.begin(), options.effects.end(), c.effect) != options.effects.end();
-    if (!present && wanted) candidates.push_back(std::move(c));
+    if (!has && wanted) candidates.push_back(std::move(c));
   }
+  return candidates;
+}
 
-  for (const EffectCandidate& c : candidates) {
-    say("fitting " + c.effect);
-    const int p = static_cast<int>(c.parameters.size());
-    Eigen::VectorXd scale(p);
-    for (int k = 0; k < p; ++k) scale(k) = c.parameters[k].probe;
-    EffectFit ef;
-    ef.effect = c.effect;
-    ef.advice = c.advice;
-    FitPoint from;
-    from.theta = Eigen::VectorXd::Zero(p);
-    from.states = states;
-    from.r = r;
-    from.cost = rss;
-    FitOutcome o = fit_nonlinear(fit, &c, from, Js, fit.parameter_jacobians(c, from.theta, states, r), options);
-    const double direct = rss > 0 ? (rss - o.at.cost) / rss : 0.0;
-    if (direct >= options.continuation_threshold && direct < options.continuation_ceiling) {
-      // A relevant effect: the fit again by continuation, the better kept.
-      try {
-        FitOutcome oc = fit_by_continuation(fit, &c, initial_states, options);
-        oc.first_predicted = o.first_predicted;
-        if (oc.at.cost < o.at.cost) o = std::move(oc);
-      } catch (const std::exception& x) {
-        o.note = std::string("the continuation fit failed: ") + x.what();
-      }
-      fit.set_horizon(INFINITY);
+// The candidate's fit from the baseline; one that explains a relevant share
+// is fitted again by continuation, the better fit kept.
+FitOutcome fit_candidate(Fitter& fit, const EffectCandidate& c, const Baseline& b, const DiagnosisOptions& options) {
+  FitPoint from;
+  from.theta = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c.parameters.size()));
+  from.states = b.states;
+  from.r = b.r;
+  from.cost = b.rss;
+  FitOutcome o = fit_nonlinear(fit, &c, from, b.Js, fit.parameter_jacobians(c, from.theta, b.states, b.r), options);
+  const double direct = b.rss > 0 ? (b.rss - o.at.cost) / b.rss : 0.0;
+  if (direct >= options.continuation_threshold && direct < options.continuation_ceiling) {
+    try {
+      FitOutcome oc = fit_by_continuation(fit, &c, b.initial_states, options);
+      oc.first_predicted = o.first_predicted;
+      if (oc.at.cost < o.at.cost) o = std::move(oc);
+    } catch (const std::exception& x) {
+      o.note = std::string("the continuation fit failed: ") + x.what();
     }
-    ef.linear_explained_fraction = rss > 0 ? std::max(0.0, (rss - o.first_predicted) / rss) : 0.0;
-    ef.refinements = o.steps;
-    ef.note = o.note;
-    const double cost = o.at.cost;
-    const Eigen::VectorXd& theta = o.at.theta;
-    const std::vector<SwingState>& s = o.at.states;
-    ef.residual = cost;
-    ef.states = s;
-    ef.explained_fraction = rss > 0 ? std::max(0.0, (rss - cost) / rss) : 0.0;
-    // Standard deviations from the last linearization: the noise-weighted
-    // residual has unit variance per sample at the noise, the band's samples
-    // are correlated (1 / independence), and a misfit left over scales it up.
-    const double dof = dof_base - p;
-    const double variance = std::max(1.0, cost / std::max(d.samples - 6.0 * H - p, 1.0)) / d.independence;
-    for (int k = 0; k < p; ++k) {
-      FittedParameter fp;
-      fp.name = c.parameters[k].name;
-      fp.unit = c.parameters[k].unit;
-      fp.value = theta(k);
-      fp.std = scale(k) * std::sqrt(std::max(variance * o.schur_inverse(k, k), 0.0));
-      fp.low = c.parameters[k].low;
-      fp.high = c.parameters[k].high;
-      fp.plausible = fp.value >= fp.low - 3 * fp.std && fp.value <= fp.high + 3 * fp.std;
-      ef.plausible = ef.plausible && fp.plausible;
-      ef.parameters.push_back(fp);
-    }
-    const double improvement = (rss - cost) * d.independence;
-    ef.p_value = f_test_p_value(improvement, p, cost * d.independence, dof);
-    ef.f_statistic = dof > 0 && cost > 0 ? (improvement / p) / (cost * d.independence / dof) : 0.0;
-    const double excess = std::max(rss - d.samples, 0.0);
-    ef.significant = d.noise_ratio > 1.0 + options.noise_excess && ef.p_value < options.significance &&
-                     ef.explained_fraction >= options.min_explained &&
-                     (rss - cost) >= options.min_excess_share * excess;
-    if (c.make(theta)) ef.rig_block = c.rig_block(theta);  // none when the fit amounts to no effect
-    d.ranking.push_back(std::move(ef));
+    fit.set_horizon(INFINITY);
   }
+  return o;
+}
 
-  std::stable_sort(d.ranking.begin(), d.ranking.end(),
+// The fitted parameters with their standard deviations from the last
+// linearization: the noise-weighted residual has unit variance per sample
+// at the noise, the band's samples are correlated (1 / independence), and a
+// misfit left over scales it up.
+std::vector<FittedParameter> fitted_parameters(const EffectCandidate& c, const FitOutcome& o, const Diagnosis& d) {
+  const int p = static_cast<int>(c.parameters.size());
+  const int H = static_cast<int>(d.baseline.size());
+  const double variance = std::max(1.0, o.at.cost / std::max(d.samples - 6.0 * H - p, 1.0)) / d.independence;
+  std::vector<FittedParameter> out;
+  for (int k = 0; k < p; ++k) {
+    FittedParameter fp;
+    fp.name = c.parameters[k].name;
+    fp.unit = c.parameters[k].unit;
+    fp.value = o.at.theta(k);
+    fp.std = c.parameters[k].probe * std::sqrt(std::max(variance * o.schur_inverse(k, k), 0.0));
+    fp.low = c.parameters[k].low;
+    fp.high = c.parameters[k].high;
+    fp.plausible = fp.value >= fp.low - 3 * fp.std && fp.value <= fp.high + 3 * fp.std;
+    out.push_back(fp);
+  }
+  return out;
+}
+
+// The candidate's fit scored: share explained, F test, significance.
+EffectFit score(const EffectCandidate& c, const FitOutcome& o, const Baseline& b, const Diagnosis& d,
+                const DiagnosisOptions& options) {
+  const int p = static_cast<int>(c.parameters.size());
+  const double rss = b.rss, cost = o.at.cost;
+  EffectFit ef;
+  ef.effect = c.effect;
+  ef.advice = c.advice;
+  ef.linear_explained_fraction = rss > 0 ? std::max(0.0, (rss - o.first_predicted) / rss) : 0.0;
+  ef.refinements = o.steps;
+  ef.note = o.note;
+  ef.residual = cost;
+  ef.states = o.at.states;
+  ef.explained_fraction = rss > 0 ? std::max(0.0, (rss - cost) / rss) : 0.0;
+  ef.parameters = fitted_parameters(c, o, d);
+  for (const auto& fp : ef.parameters) ef.plausible = ef.plausible && fp.plausible;
+  const double dof = b.dof - p;
+  const double improvement = (rss - cost) * d.independence;
+  ef.p_value = f_test_p_value(improvement, p, cost * d.independence, dof);
+  ef.f_statistic = dof > 0 && cost > 0 ? (improvement / p) / (cost * d.independence / dof) : 0.0;
+  const double excess = std::max(rss - d.samples, 0.0);
+  ef.significant = d.noise_ratio > 1.0 + options.noise_excess && ef.p_value < options.significance &&
+                   ef.explained_fraction >= options.min_explained &&
+                   (rss - cost) >= options.min_excess_share * excess;
+  if (c.make(o.at.theta)) ef.rig_block = c.rig_block(o.at.theta);  // none when the fit amounts to no effect
+  return ef;
+}
+
+// By explained share; then a leaner effect that explains statistically as
+// much goes before a richer neighbour.
+void rank(std::vector<EffectFit>& ranking, const Diagnosis& d, double dof_base) {
+  std::stable_sort(ranking.begin(), ranking.end(),
                    [](const EffectFit& a, const EffectFit& b) { return a.explained_fraction > b.explained_fraction; });
-  // Parsimony: a leaner effect that explains statistically as much goes first.
-  for (size_t pass = 0; pass < d.ranking.size(); ++pass) {
+  for (size_t pass = 0; pass < ranking.size(); ++pass) {
     bool swapped = false;
-    for (size_t i = 1; i < d.ranking.size(); ++i) {
-      EffectFit& rich = d.ranking[i - 1];
-      EffectFit& lean = d.ranking[i];
+    for (size_t i = 1; i < ranking.size(); ++i) {
+      EffectFit& rich = ranking[i - 1];
+      EffectFit& lean = ranking[i];
       const double extra = static_cast<double>(rich.parameters.size()) - static_cast<double>(lean.parameters.size());
       if (extra <= 0) continue;
       const double dof = dof_base - static_cast<double>(rich.parameters.size());
@@ -467,6 +488,10 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     }
     if (!swapped) break;
   }
+}
+
+// The first significant effect, and the one-line verdict.
+void conclude(Diagnosis& d, const DiagnosisOptions& options) {
   for (const auto& e : d.ranking) {
     if (e.significant) {
       d.missing_effect = e.effect;
@@ -481,6 +506,32 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   } else {
     d.summary = "no significant missing effect: no effect of the catalogue explains the residual";
   }
+}
+
+}  // namespace
+
+Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
+                   const std::vector<std::string>& sources, const DiagnosisOptions& options) {
+  options.validate();
+  if (records.empty()) throw std::invalid_argument("diagnose needs at least one history");
+  const ResponseModel base(model);
+  Diagnosis d;
+  compare_histories(base, records, sources, options, d);
+  std::vector<const BandTarget*> targets;
+  std::vector<SwingState> states;
+  for (const auto& h : d.baseline) {
+    targets.push_back(&h.target);
+    states.push_back(h.fit.state);
+  }
+  Fitter fit(model, base, targets, options.threads);
+  const Baseline b = fit_baseline(fit, base, targets, states, options, d);
+  for (const auto& e : model.effects) d.present.push_back(e->name());
+  for (const EffectCandidate& c : candidates_to_test(base, d.present, options)) {
+    progress(options, "fitting " + c.effect);
+    d.ranking.push_back(score(c, fit_candidate(fit, c, b, options), b, d, options));
+  }
+  rank(d.ranking, d, b.dof);
+  conclude(d, options);
   return d;
 }
 

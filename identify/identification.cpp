@@ -60,8 +60,11 @@ struct Unknowns {
 
 Unknowns unknowns_of(const IdentificationOptions& options, double mass, const PointMassSums& p) {
   Unknowns u;
-  if (options.cog_constraint == CogConstraint::in_plane) u.fixed = {0, 1};
-  if (options.cog_constraint == CogConstraint::full) u.fixed = {0, 1, 2};
+  // The imposed components are the leading ones: x, y in plane, then z.
+  const int imposed = options.cog_constraint == CogConstraint::full       ? 3
+                      : options.cog_constraint == CogConstraint::in_plane ? 2
+                                                                          : 0;
+  for (int j = 0; j < imposed; ++j) u.fixed.push_back(j);
   u.c_id_imposed = (mass * options.imposed_cog + p.s_points) / p.m_id;
   for (int j = 0; j < 9; ++j) {
     if (std::find(u.fixed.begin(), u.fixed.end(), j) == u.fixed.end()) u.free.push_back(j);

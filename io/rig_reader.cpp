@@ -9,12 +9,12 @@
 #include "io/model_reader.hpp"
 #include "io/reduced_export.hpp"
 #include "io/yaml_fields.hpp"
+#include "io/yaml_parameters.hpp"
 #include "reduction/frame_reduction.hpp"
 #include "rig/effect.hpp"
-#include "rig/effects.hpp"
+#include "rig/effect_kinds.hpp"
 #include "rig/frame_models.hpp"
 #include "rig/rig_spec.hpp"
-#include "rig/joint_compliance.hpp"
 
 namespace rigflex::io {
 namespace {
@@ -40,24 +40,6 @@ struct Reader {
       if (e.file() != ctx.file() || k.empty() || named) throw;
       throw InputError(e.file(), e.line(), path + "." + k, e.reason());
     }
-  }
-
-  // Per-rod values: a list of n, or one value for all rods.
-  std::vector<double> per_rod(const YAML::Node& map, const std::string& key) const {
-    const YAML::Node v = ctx.required(map, key);
-    if (v.IsScalar()) return std::vector<double>(rods, ctx.as_number(v, key));
-    return ctx.numbers(map, key, rods);
-  }
-
-  std::vector<Vec3> per_rod_vectors(const YAML::Node& map, const std::string& key) const {
-    const YAML::Node v = ctx.required(map, key);
-    ctx.expect_sequence(v, key);
-    if (static_cast<int>(v.size()) != rods) {
-      ctx.fail(v, key, "needs one [x, y, z] per rod (" + std::to_string(rods) + "), got " + std::to_string(v.size()));
-    }
-    std::vector<Vec3> out;
-    for (const auto& e : v) out.push_back(ctx.as_vec3(e, key));
-    return out;
   }
 
   rig::RigGeometry geometry(const YAML::Node& g) const {
@@ -209,123 +191,21 @@ struct Reader {
     return m;
   }
 
-  std::shared_ptr<const rig::Effect> effect(const std::string& name, const YAML::Node& e,
+  // One effect, read by its kind in the catalogue (rig/effect_kinds.hpp);
+  // a frame given by files is read here, when the kind asks for it.
+  std::shared_ptr<const rig::Effect> effect(const rig::EffectKind& kind, const YAML::Node& e,
                                             const rig::RigGeometry& g) const {
-    const std::string key = "effects." + name;
-    auto frame_keys = {"enabled", "reduced", "model", "interface", "method", "modes", "cutoff", "zeta", "offset",
-                       "tolerance"};
-    if ((name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility") && e["joint_compliance"]) {
-      return joint_compliance_frame(name, e, g);
+    rig::EffectParseContext x;
+    x.key = "effects." + kind.name;
+    x.rods = rods;
+    x.geometry = &g;
+    x.body_mass = mass;
+    x.read_frame = [&](bool fixed) { return frame(e, x.key, fixed); };
+    try {
+      return kind.parse(parameter_tree(e), x);
+    } catch (const rig::ParameterError& p) {
+      throw InputError(ctx.file(), p.line(), p.key(), p.reason());
     }
-    if (name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility") {
-      ctx.expect_map(e, key, frame_keys);
-      return std::make_shared<rig::PendingFrame>(frame(e, key, name == "fixed_frame_flexibility"));
-    }
-    if (name == "rod_compliance") {
-      ctx.expect_map(e, key, {"enabled", "stiffness", "youngs_modulus", "area"});
-      if (static_cast<bool>(e["stiffness"]) == static_cast<bool>(e["area"])) {
-        ctx.fail(e, key, "needs either 'stiffness' (N/m per rod) or 'youngs_modulus' and 'area' (EA/L)");
-      }
-      if (e["stiffness"]) return std::make_shared<rig::RodCompliance>(per_rod(e, "stiffness"));
-      const double E = ctx.number(e, "youngs_modulus");
-      const auto A = per_rod(e, "area");
-      std::vector<double> k;
-      for (int i = 0; i < rods; ++i) k.push_back(E * A[i] / g.rods[i].length);
-      return std::make_shared<rig::RodCompliance>(k);
-    }
-    if (name == "rod_mass") {
-      ctx.expect_map(e, key, {"enabled", "mass"});
-      return std::make_shared<rig::RodMass>(per_rod(e, "mass"));
-    }
-    if (name == "joint_friction") {
-      ctx.expect_map(e, key, {"enabled", "viscous", "coulomb", "regularization", "joints"});
-      rig::JointFrictionParameters p;
-      if (!e["viscous"] && !e["coulomb"]) ctx.fail(e, key, "needs 'viscous' (N m s/rad) and/or 'coulomb' (N m)");
-      p.viscous = ctx.number_or(e, "viscous", 0.0);
-      p.coulomb = ctx.number_or(e, "coulomb", 0.0);
-      p.regularization = ctx.number_or(e, "regularization", p.regularization);
-      const std::string joints = ctx.text_or(e, "joints", "both");
-      if (joints != "both" && joints != "upper" && joints != "lower") {
-        ctx.fail(e["joints"], "joints", "must be both, upper or lower");
-      }
-      p.upper = joints != "lower";
-      p.lower = joints != "upper";
-      return std::make_shared<rig::JointFriction>(p);
-    }
-    if (name == "air_drag") {
-      ctx.expect_map(e, key, {"enabled", "density", "cd_area", "rotational", "centre"});
-      rig::AirDragParameters p;
-      p.density = ctx.number_or(e, "density", p.density);
-      if (!e["cd_area"] && !e["rotational"]) ctx.fail(e, key, "needs 'cd_area' (m^2) and/or 'rotational'");
-      p.cd_area = ctx.number_or(e, "cd_area", 0.0);
-      p.rotational = ctx.number_or(e, "rotational", 0.0);
-      if (e["centre"]) p.centre = ctx.vec3(e, "centre");
-      return std::make_shared<rig::AirDrag>(p);
-    }
-    if (name == "encoder_offset") {
-      ctx.expect_map(e, key, {"enabled", "alpha", "beta"});
-      return std::make_shared<rig::EncoderOffset>(per_rod(e, "alpha"), per_rod(e, "beta"));
-    }
-    if (name == "rod_length_error") {
-      ctx.expect_map(e, key, {"enabled", "delta"});
-      return std::make_shared<rig::RodLengthError>(per_rod(e, "delta"));
-    }
-    if (name == "joint_position_error") {
-      ctx.expect_map(e, key, {"enabled", "upper", "lower"});
-      const auto zero = std::vector<Vec3>(rods, Vec3::Zero());
-      return std::make_shared<rig::JointPositionError>(e["upper"] ? per_rod_vectors(e, "upper") : zero,
-                                                       e["lower"] ? per_rod_vectors(e, "lower") : zero);
-    }
-    if (name == "load_cell_gain") {
-      ctx.expect_map(e, key, {"enabled", "gain", "offset"});
-      if (!e["gain"] && !e["offset"]) ctx.fail(e, key, "needs 'gain' and/or 'offset' (N)");
-      return std::make_shared<rig::LoadCellGain>(e["gain"] ? per_rod(e, "gain") : std::vector<double>(rods, 1.0),
-                                                 e["offset"] ? per_rod(e, "offset") : std::vector<double>(rods, 0.0));
-    }
-    std::string known;
-    for (const char* n : rig::effect_names()) known += std::string(known.empty() ? "" : ", ") + n;
-    ctx.fail(e, key, "unknown effect '" + name + "' (known: " + known + ")");
-  }
-
-  // A frame given by the compliance of its joints (rig/joint_compliance.hpp),
-  // as `rigflex diagnose` fits it.
-  std::shared_ptr<const rig::Effect> joint_compliance_frame(const std::string& name, const YAML::Node& e,
-                                                            const rig::RigGeometry& g) const {
-    const std::string key = "effects." + name;
-    ctx.expect_map(e, key, {"enabled", "joint_compliance"});
-    const YAML::Node c = e["joint_compliance"];
-    const std::string at = key + ".joint_compliance";
-    auto non_negative = [&](const Vec3& v, const YAML::Node& node, const std::string& k) {
-      if (!(v.minCoeff() >= 0)) ctx.fail(node, at + "." + k, "compliances must be >= 0 (m/N; rocking, twist rad/(N m))");
-    };
-    auto pair = [&](const char* k) {
-      Eigen::Vector2d v = Eigen::Vector2d::Zero();
-      if (!c[k]) return v;
-      if (!c[k].IsSequence() || c[k].size() != 2) ctx.fail(c[k], at + "." + k, "needs [x, y]");
-      v << ctx.as_number(c[k][0], at + "." + k), ctx.as_number(c[k][1], at + "." + k);
-      non_negative(Vec3(v.x(), v.y(), 0.0), c[k], k);
-      return v;
-    };
-    if (name == "fixed_frame_flexibility") {
-      within(at, [&] { ctx.expect_map(c, at, {"joints", "sway", "twist"}); });
-      rig::FixedJointCompliance jc;
-      jc.joints = within(at, [&] { return per_rod_vectors(c, "joints"); });
-      for (const auto& v : jc.joints) non_negative(v, c["joints"], "joints");
-      jc.sway = pair("sway");
-      jc.twist = ctx.number_or(c, "twist", 0.0);
-      non_negative(Vec3(jc.twist, 0, 0), c["twist"], "twist");
-      return guarded(c, at, [&] {
-        return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(g, mass, jc));
-      });
-    }
-    within(at, [&] { ctx.expect_map(c, at, {"translation", "rocking"}); });
-    rig::CarryingJointCompliance jc;
-    if (c["translation"]) jc.translation = ctx.vec3(c, "translation");
-    non_negative(jc.translation, c["translation"], "translation");
-    jc.rocking = pair("rocking");
-    return guarded(c, at, [&] {
-      return std::make_shared<rig::CarryingFrameFlexibility>(rig::joint_compliance_carrying_frame(g, mass, jc));
-    });
   }
 
   // The `effects` mapping: every effect switched on, in the file's order.
@@ -336,14 +216,9 @@ struct Reader {
       const std::string name = kv.first.as<std::string>();
       const std::string key = "effects." + name;
       const YAML::Node& e = kv.second;
-      bool known = false;
-      std::string names;
-      for (const char* n : rig::effect_names()) {
-        known = known || name == n;
-        names += std::string(names.empty() ? "" : ", ") + n;
-      }
+      const rig::EffectKind* kind = rig::find_effect_kind(name);
       // Checked before 'enabled': a misspelt effect switched off is still misspelt.
-      if (!known) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + names + ")");
+      if (!kind) ctx.fail(kv.first, key, "unknown effect '" + name + "' (known: " + rig::effect_name_list() + ")");
       if (!e.IsMap()) ctx.fail(e, key, "parameters must be a mapping");
       if (std::find(seen.begin(), seen.end(), name) != seen.end()) ctx.fail(kv.first, key, "given twice");
       seen.push_back(name);
@@ -351,16 +226,7 @@ struct Reader {
       // name (and `enabled: false` there removes it).
       std::erase_if(model.effects, [&](const auto& x) { return name == x->name(); });
       if (!within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
-      model.effects.push_back(within(key, [&] { return effect(name, e, model.geometry); }));
-    }
-  }
-
-  template <class F>
-  std::shared_ptr<const rig::Effect> guarded(const YAML::Node& e, const std::string& key, F make) const {
-    try {
-      return make();
-    } catch (const std::invalid_argument& x) {
-      ctx.fail(e, key, x.what());
+      model.effects.push_back(within(key, [&] { return effect(*kind, e, model.geometry); }));
     }
   }
 };

@@ -1,6 +1,7 @@
 #pragma once
 // Physical effects plug into the rig through three hooks, so that a new one
-// is a class and a parser entry, never an edit of the core:
+// is a class and an entry of the catalogue's table (rig/effect_kinds.hpp),
+// never an edit of the core:
 //   build    - structure: geometry truth, rod stiffness and mass, frames;
 //   add_loads - forces that depend on the motion (friction, drag);
 //   measure  - the measurement chain (offsets, gains).

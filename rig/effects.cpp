@@ -149,11 +149,4 @@ void LoadCellGain::unmeasure(SensorSample& s) const {
   for (size_t i = 0; i < gain_.size(); ++i) s.force(i) = (s.force(i) - offset_[i]) / gain_[i];
 }
 
-const std::vector<const char*>& effect_names() {
-  static const std::vector<const char*> names = {
-      "fixed_frame_flexibility", "carrying_frame_flexibility", "rod_compliance", "rod_mass", "joint_friction",
-      "air_drag", "encoder_offset", "rod_length_error", "joint_position_error", "load_cell_gain"};
-  return names;
-}
-
 }  // namespace rigflex::rig

@@ -1,6 +1,7 @@
 #pragma once
 // The catalogue of physical effects, under the names of
 // shared/spec/rig-conventions.md. Per-rod parameters are vectors of length n.
+// How a rig file states each one and how diagnose fits it: rig/effect_kinds.hpp.
 #include <vector>
 
 #include "rig/effect.hpp"
@@ -144,8 +145,5 @@ class LoadCellGain : public Effect {
  private:
   std::vector<double> gain_, offset_;
 };
-
-// The spec's effect names, in its order.
-const std::vector<const char*>& effect_names();
 
 }  // namespace rigflex::rig

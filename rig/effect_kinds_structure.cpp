@@ -1,0 +1,166 @@
+// Effects on the rig's structure (the build hook) other than the frames:
+// the rods' stiffness and mass, and errors of the geometry block.
+#include "rig/effect_kind_entries.hpp"
+#include "rig/effects.hpp"
+
+namespace rigflex::rig::kinds {
+namespace {
+
+using R = ParameterReader;
+constexpr double inf = INFINITY;
+
+std::shared_ptr<const Effect> parse_rod_compliance(const ParameterValue& e, const EffectParseContext& x) {
+  expect_parameters(e, x, "rod_compliance");
+  if (e["stiffness"].defined() == e["area"].defined()) {
+    R::fail(e, x.key, "needs either 'stiffness' (N/m per rod) or 'youngs_modulus' and 'area' (EA/L)");
+  }
+  if (e["stiffness"].defined()) return std::make_shared<RodCompliance>(R::per_rod(e, "stiffness", x.rods));
+  const double E = R::number(e, "youngs_modulus");
+  const auto A = R::per_rod(e, "area", x.rods);
+  std::vector<double> k;
+  for (int i = 0; i < x.rods; ++i) k.push_back(E * A[i] / x.geometry->rods[i].length);
+  return std::make_shared<RodCompliance>(k);
+}
+
+// One axial compliance for all rods.
+EffectFitting fit_rod_compliance(const FitContext& x) {
+  const FitScales s = fit_scales(x);
+  const int n = s.n;
+  const double c_probe = s.c_probe;
+  EffectFitting f;
+  f.parameters = {{"axial_compliance", "m/N", c_probe, 0, s.c_high, true}};
+  // Below 1 % of the probe (5 um under the static load) the rods are as
+  // stiff as the rigid rods' realization: no effect.
+  f.make = [n, c_probe](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+    if (p(0) < 1e-2 * c_probe) return nullptr;
+    return std::make_shared<RodCompliance>(std::vector<double>(n, 1.0 / p(0)));
+  };
+  f.write = [](const Eigen::VectorXd& p) {
+    return ParameterValue::map().set("stiffness", ParameterValue::of(1.0 / std::max(p(0), 1e-15)));
+  };
+  f.advice = "give the rods' axial stiffness (effects.rod_compliance: youngs_modulus and area, or stiffness)";
+  return f;
+}
+
+EffectFitting fit_rod_mass(const FitContext& x) {
+  const FitScales s = fit_scales(x);
+  const int n = s.n;
+  EffectFitting f;
+  f.parameters = {{"mass", "kg", 0.01 * s.M / n, 0, 0.1 * s.M / n, true}};
+  f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+    return std::make_shared<RodMass>(std::vector<double>(n, positive(p(0))));
+  };
+  f.write = [](const Eigen::VectorXd& p) { return ParameterValue::map().set("mass", ParameterValue::of(positive(p(0)))); };
+  f.advice = "weigh a rod and give its mass (effects.rod_mass.mass)";
+  return f;
+}
+
+EffectFitting fit_rod_length_error(const FitContext& x) {
+  const FitScales s = fit_scales(x);
+  const int n = s.n;
+  EffectFitting f;
+  f.parameters = per_rod_parameters("delta", "m", n, 1e-3, 0.05 * s.L);
+  f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+    return std::make_shared<RodLengthError>(segment(p, 0, n));
+  };
+  f.write = [n](const Eigen::VectorXd& p) { return ParameterValue::map().set("delta", ParameterValue::of(segment(p, 0, n))); };
+  f.advice = "measure the rods' joint-to-joint lengths and correct geometry.rods[*].length";
+  return f;
+}
+
+// The upper joints only: a lower joint's error acts alike on the swing.
+EffectFitting fit_joint_position_error(const FitContext& x) {
+  const int n = x.rods;
+  EffectFitting f;
+  for (int i = 1; i <= n; ++i) {
+    for (const char* a : {"x", "y", "z"}) {
+      f.parameters.push_back({"upper" + std::to_string(i) + "_" + a, "m", 1e-3, -0.05, 0.05, false});
+    }
+  }
+  f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+    std::vector<Vec3> upper, lower(static_cast<size_t>(n), Vec3::Zero());
+    for (int i = 0; i < n; ++i) upper.push_back(p.segment<3>(3 * i));
+    return std::make_shared<JointPositionError>(upper, lower);
+  };
+  f.write = [n](const Eigen::VectorXd& p) {
+    std::vector<ParameterValue> upper;
+    for (int i = 0; i < n; ++i) upper.push_back(ParameterValue::of(segment(p, 3 * i, 3)));
+    return ParameterValue::map().set("upper", ParameterValue::list(upper));
+  };
+  f.advice = "survey the joint centres and correct geometry.rods[*].upper and lower";
+  return f;
+}
+
+}  // namespace
+
+EffectKind rod_compliance() {
+  EffectKind k;
+  k.name = "rod_compliance";
+  k.hook = EffectHook::build;
+  k.equations = "each rod an axial spring between its joints (without it the rods are rigid)";
+  k.signature = "bounce mode at sqrt(sum k / m) / 2 pi (vertical rods)";
+  k.parameters = {
+      {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "", "axial stiffness (or `youngs_modulus` and `area`)"},
+      {"youngs_modulus", ParameterShape::number, "Pa", 0, inf, true, "", "E of EA/L"},
+      {"area", ParameterShape::per_rod, "m^2", 0, inf, true, "", "the rods' cross-section"},
+  };
+  k.parse = parse_rod_compliance;
+  k.fitted_through = "one axial compliance for all rods";
+  k.fit = fit_rod_compliance;
+  return k;
+}
+
+EffectKind rod_mass() {
+  EffectKind k;
+  k.name = "rod_mass";
+  k.hook = EffectHook::build;
+  k.equations = "m/3 of each rod moves with each joint, m/2 of its weight hangs on each";
+  k.signature = "the swing slows";
+  k.parameters = {{"mass", ParameterShape::per_rod, "kg", 0, inf, false, "", "mass of each rod, uniform along it"}};
+  k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
+    expect_parameters(e, x, "rod_mass");
+    return std::make_shared<RodMass>(R::per_rod(e, "mass", x.rods));
+  };
+  k.fitted_through = "one mass for all rods";
+  k.fit = fit_rod_mass;
+  return k;
+}
+
+EffectKind rod_length_error() {
+  EffectKind k;
+  k.name = "rod_length_error";
+  k.hook = EffectHook::build;
+  k.equations = "the true rod lengths are the geometry block's plus delta";
+  k.signature = "the body hangs lower by delta";
+  k.parameters = {{"delta", ParameterShape::per_rod, "m", -inf, inf, false, "", "length error of each rod"}};
+  k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
+    expect_parameters(e, x, "rod_length_error");
+    return std::make_shared<RodLengthError>(R::per_rod(e, "delta", x.rods));
+  };
+  k.fitted_through = "every rod's length error";
+  k.fit = fit_rod_length_error;
+  return k;
+}
+
+EffectKind joint_position_error() {
+  EffectKind k;
+  k.name = "joint_position_error";
+  k.hook = EffectHook::build;
+  k.equations = "the true joint centres are the geometry block's plus the errors (upper in G, lower in c)";
+  k.signature = "shifted equilibrium";
+  k.parameters = {
+      {"upper", ParameterShape::per_rod_vec3, "m", -inf, inf, false, "0", "error of each upper joint centre"},
+      {"lower", ParameterShape::per_rod_vec3, "m", -inf, inf, false, "0", "error of each lower joint centre"},
+  };
+  k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
+    expect_parameters(e, x, "joint_position_error");
+    const auto zero = std::vector<Vec3>(static_cast<size_t>(x.rods), Vec3::Zero());
+    return std::make_shared<JointPositionError>(e["upper"].defined() ? R::per_rod_vectors(e, "upper", x.rods) : zero,
+                                                e["lower"].defined() ? R::per_rod_vectors(e, "lower", x.rods) : zero);
+  };
+  k.fitted_through = "every upper joint's position error (its vertical part is a length error)";
+  k.fit = fit_joint_position_error;
+  return k;
+}
+
+}  // namespace rigflex::rig::kinds
