@@ -11,6 +11,7 @@
 #include <string_view>
 #include <utility>
 
+#include "io/file_text.hpp"
 #include "io/measurement_text.hpp"
 
 namespace rigflex::io {
@@ -285,22 +286,7 @@ std::string read_all(std::istream& in, const std::string& file) {
 }  // namespace
 
 rig::Record read_measurement_file(const fs::path& file, RodRule rule) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), 0, "", "cannot open the file");
-  // One read of the whole file: a set of 15 s logs is megabytes, and the
-  // character-wise stream iterator took most of the reading time.
-  std::string text;
-  std::error_code ec;
-  const auto size = fs::file_size(file, ec);
-  if (!ec) {
-    text.resize(static_cast<size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    text.resize(static_cast<size_t>(in.gcount()));
-    if (in.bad()) throw InputError(file.string(), 0, "", "cannot read the file");
-  } else {
-    text = read_all(in, file.string());
-  }
-  return parse_text(text, file.string(), std::move(rule));
+  return parse_text(read_file_text(file), file.string(), std::move(rule));
 }
 
 rig::Record read_record_csv(const fs::path& file, int expected_rods) {

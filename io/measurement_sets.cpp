@@ -13,6 +13,12 @@ namespace {
 namespace fs = std::filesystem;
 using measurement_text::lower;
 
+// A measurement file: *.csv, or *.csv.gz read through its decompression (any case).
+bool is_measurement_name(const std::string& name) {
+  const std::string n = lower(name);
+  return n.ends_with(".csv") || n.ends_with(".csv.gz");
+}
+
 // Digit runs compare by value, everything else byte by byte, so h2 < h10.
 int natural_compare(std::string_view a, std::string_view b) {
   auto digit = [](char c) { return c >= '0' && c <= '9'; };
@@ -54,13 +60,13 @@ std::vector<fs::path> csv_files(const fs::path& folder) {
       const std::string name = entry.path().filename().string();
       // Hidden files are skipped: copies to a USB stick leave "._h1.csv" beside "h1.csv".
       if (name.empty() || name.front() == '.') continue;
-      if (lower(entry.path().extension().string()) != ".csv" || !entry.is_regular_file()) continue;
+      if (!is_measurement_name(name) || !entry.is_regular_file()) continue;
       files.push_back(entry.path());
     }
   } catch (const fs::filesystem_error& e) {
     throw InputError(folder.string(), 0, "", std::string("cannot list the folder: ") + e.code().message());
   }
-  if (files.empty()) throw InputError(folder.string(), 0, "", "no .csv files in the folder");
+  if (files.empty()) throw InputError(folder.string(), 0, "", "no .csv or .csv.gz files in the folder");
   std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
     return natural_less(a.filename().string(), b.filename().string());
   });
@@ -88,8 +94,7 @@ bool holds_csv(const fs::path& folder) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
-    if (!name.empty() && name.front() != '.' && lower(entry.path().extension().string()) == ".csv" &&
-        entry.is_regular_file())
+    if (!name.empty() && name.front() != '.' && is_measurement_name(name) && entry.is_regular_file())
       return true;
   }
   return false;
@@ -128,7 +133,7 @@ MeasurementSets read_measurement_sets(const std::vector<fs::path>& paths, int ex
       continue;
     }
     const auto folders = set_folders(path);
-    if (folders.empty()) throw InputError(path.string(), 0, "", "no .csv files in the folder or its subfolders");
+    if (folders.empty()) throw InputError(path.string(), 0, "", "no .csv or .csv.gz files in the folder or its subfolders");
     for (const auto& f : folders) {
       out.names.push_back(f.string());
       out.sets.push_back(read_measurement_set(f, expected_rods));

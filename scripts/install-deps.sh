@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopenblas-dev
   libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmatio-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libboost-dev libfftw3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libboost-dev libfftw3-dev zlib1g-dev
   calculix-ccx python3-scipy python3-numpy
   chromium
 )

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "apps/cli_support.hpp"
+#include "support/gzip_file.hpp"
 #include "support/temp_files.hpp"
 #include "support/text_edits.hpp"
 
@@ -149,6 +150,35 @@ TEST_F(CliIdentify, TooShortRecordReportsWhatIsNotObservable) {
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find((out.path() / "set").string()), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("zG"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out.path() / "res"));
+}
+
+// Records archived as .csv.gz give the identification of the .csv files
+// they hold, bit for bit; a .csv.gz that is not gzip stops with exit 2
+// naming it, and nothing is written.
+TEST_F(CliIdentify, CompressedRecordsIdentifyAsTheirCsvAndABadOneIsNamed) {
+  const TempDir out("rigflex-identify");
+  fs::create_directories(out.path() / "packed");
+  for (const auto& e : fs::directory_iterator(dir_ / "meas" / "set1"))
+    write_gzip(out.path() / "packed" / (e.path().filename().string() + ".gz"), read_text(e.path()));
+  const std::string rig = " " + (dir_ / "rig.yaml").string() + " ";
+  const CliRun plain = run("identify" + rig + (dir_ / "meas" / "set1").string() + " --quiet --out " +
+                           (out.path() / "plain").string());
+  ASSERT_EQ(plain.code, 0) << plain.out;
+  const CliRun packed = run("identify" + rig + (out.path() / "packed").string() + " --quiet --out " +
+                            (out.path() / "packed-result").string());
+  ASSERT_EQ(packed.code, 0) << packed.out;
+  EXPECT_EQ(read_json(out.path() / "packed-result" / "identification.json")["mean"],
+            read_json(out.path() / "plain" / "identification.json")["mean"]);
+
+  fs::create_directories(out.path() / "bad");
+  const fs::path not_gzip = out.path() / "bad" / "h1.csv.gz";
+  write_text(not_gzip, read_text(dir_ / "meas" / "set1" / "h1.csv"));
+  const CliRun bad = run("identify" + rig + (out.path() / "bad").string() + " --quiet --out " +
+                         (out.path() / "res").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find(not_gzip.string()), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("not a gzip file"), std::string::npos) << bad.out;
   EXPECT_FALSE(fs::exists(out.path() / "res"));
 }
 

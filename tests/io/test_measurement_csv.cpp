@@ -524,7 +524,7 @@ TEST(MeasurementSet, RodCountMismatch) {
 TEST(MeasurementSet, EmptyOrMissingFolder) {
   test::TempDir dir("rigflex-measurement");
   write_text(dir.path() / "readme.txt", "");
-  const std::vector<std::pair<fs::path, std::string>> cases = {{dir.path(), "no .csv files"},
+  const std::vector<std::pair<fs::path, std::string>> cases = {{dir.path(), "no .csv or .csv.gz files"},
                                                                {dir.path() / "absent", "no such folder"},
                                                                {dir.path() / "readme.txt", "not a folder"}};
   for (const auto& [folder, words] : cases) {
