@@ -43,11 +43,17 @@ void print_prediction(const identify::Prediction& p) {
   if (p.rigid) print_errors("rigid algorithm", *p.rigid);
   if (p.from_flexibility) {
     print_errors("of it from flexibility (rigid - flexible)", *p.from_flexibility);
-    std::printf("  against the rig's accuracy (zG 5 mm, moments 3 %%, products 1.5 %%, CoG in plane 3 mm): %s\n",
-                rig::to_string(p.verdict));
+    std::printf("  against the rig's accuracy (zG 5 mm, moments 3 %%, products 1.5 %%, CoG in plane 3 mm): %.3g times "
+                "it; by the error alone: %s\n",
+                identify::accuracy_score(*p.from_flexibility), rig::to_string(p.verdict));
   }
   if (!p.note.empty()) std::printf("  note: %s\n", p.note.c_str());
-  std::printf("verdict (ratio and predicted error): %s\n", rig::to_string(p.combined));
+}
+
+// The one verdict and the one advice, after everything that weighs in.
+void print_conclusion(const identify::CheckConclusion& c) {
+  std::printf("verdict: %s (%s)\n", rig::to_string(c.verdict), c.reason.c_str());
+  if (c.advice) std::printf("advice (%s): %s\n", c.advice_reason.c_str(), c.advice->message.c_str());
 }
 
 void print(const rig::CheckResult& r) {
@@ -63,15 +69,15 @@ void print(const rig::CheckResult& r) {
   for (double f : r.swing_frequencies_hz) std::printf(" %.4f", f);
   std::printf(" Hz\n");
   if (!r.first_deformation_frequency_hz) {
-    std::printf("no deformation mode: frames and rods are rigid in this model\nverdict: %s\n", rig::to_string(r.verdict));
+    std::printf("no deformation mode: frames and rods are rigid in this model\n");
     return;
   }
   std::printf("first deformation frequency f1 = %.4f Hz, ratio f1 / highest swing = %.3f\n",
               *r.first_deformation_frequency_hz, *r.ratio);
-  std::printf("verdict: %s (>= 4 safe, 3-4 marginal, < 3 use the flexible algorithm)\n", rig::to_string(r.verdict));
+  std::printf("by the ratio alone: %s (>= 4 safe, 3-4 marginal, < 3 use the flexible algorithm)\n",
+              rig::to_string(r.verdict));
   std::printf("strain energy in the first deformation mode: fixed frame %.1f %%, rods %.1f %%, carrying frame %.1f %%\n",
               100 * r.share_fixed_frame, 100 * r.share_rods, 100 * r.share_carrying_frame);
-  if (r.advice) std::printf("advice: %s\n", r.advice->message.c_str());
 }
 
 int run(const CheckArgs& a) {
@@ -99,14 +105,16 @@ int run(const CheckArgs& a) {
                      o.histories);
       };
     }
-    prediction = identify::predict_identification_error(model, r, o);
+    prediction = identify::predict_identification_error(model, o);
     print_prediction(*prediction);
   }
+  const identify::CheckConclusion conclusion = identify::conclude_check(r, prediction);
+  print_conclusion(conclusion);
   if (!a.out.empty()) {
     const std::filesystem::path out(a.out);
     std::filesystem::create_directories(out);
     io::FileBatch batch;
-    batch.add_text(out / "check.json", report::check_json(model, r, prediction).dump(2) + "\n");
+    batch.add_text(out / "check.json", report::check_json(model, r, prediction, conclusion).dump(2) + "\n");
     const rig::RigSystem rig(model);
     io::add_rig_mode_files(batch, out, rig, r.linearization);
     batch.commit();

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "identify/identification_rig.hpp"
 #include "rig/rig_system.hpp"
@@ -18,7 +20,74 @@ bool parallel_equal_rods(const rig::RigGeometry& g) {
   return true;
 }
 
+template <typename... A>
+std::string format(const char* f, A... a) {
+  char text[400];
+  std::snprintf(text, sizeof text, f, a...);
+  return text;
+}
+
+std::string ratio_text(const rig::CheckResult& r) {
+  return r.ratio ? format("f1 / highest swing = %.3g", *r.ratio) : std::string("no deformation mode");
+}
+
+// The error that flexibility causes, quasi-static at the swing frequencies,
+// grows with the dominant component's compliance: stiffening it by the
+// error's factor over the accuracy brings that error to the accuracy. An
+// estimate, stated as one.
+rig::StiffnessAdvice error_advice(rig::Component c, double score) {
+  rig::StiffnessAdvice a;
+  a.component = c;
+  a.factor = score;
+  a.message = format("make the %s about %.3g times stiffer: the predicted error that its flexibility causes then falls "
+                     "to the rig's accuracy (an estimate: that error grows with the compliance)",
+                     rig::to_string(c), score);
+  return a;
+}
+
+CheckConclusion verdict_of(const rig::CheckResult& check, const std::optional<Prediction>& p) {
+  CheckConclusion c;
+  c.verdict = check.verdict;
+  if (!p) {
+    c.reason = "from the frequency ratio alone (" + ratio_text(check) + "); no predicted error was asked for";
+  } else if (!p->rigid) {
+    c.reason = "from the frequency ratio alone (" + ratio_text(check) + "): the virtual measurement could not "
+               "predict the error";
+  } else {
+    c.verdict = rig::worse(check.verdict, p->verdict);
+    if (p->verdict == check.verdict) {
+      c.reason = "the frequency ratio (" + ratio_text(check) + ") and the predicted error agree";
+    } else if (c.verdict == p->verdict) {
+      c.reason = "the predicted error decides: the frequency ratio (" + ratio_text(check) + ") alone would say '" +
+                 rig::to_string(check.verdict) + "', but flexibility costs more than the rig's accuracy";
+    } else {
+      c.reason = "the frequency ratio decides (" + ratio_text(check) + "): the predicted error alone would say '" +
+                 rig::to_string(p->verdict) + "'";
+    }
+  }
+  return c;
+}
+
 }  // namespace
+
+CheckConclusion conclude_check(const rig::CheckResult& check, const std::optional<Prediction>& p,
+                               const AccuracyLimits& limits) {
+  CheckConclusion c = verdict_of(check, p);
+  if (check.advice) {
+    c.advice = check.advice;
+    c.advice_reason = "frequency ratio";
+  }
+  if (p && p->from_flexibility && p->verdict != rig::Verdict::rigid_safe) {
+    const double score = accuracy_score(*p->from_flexibility, limits);
+    // The stricter need wins; a ratio that stiffening cannot reach stays the advice.
+    const bool stricter = !check.advice || (check.advice->factor && score > *check.advice->factor);
+    if (score > 1.0 && stricter) {
+      c.advice = error_advice(check.dominant, score);
+      c.advice_reason = "predicted error";
+    }
+  }
+  return c;
+}
 
 double accuracy_score(const ErrorSummary& e, const AccuracyLimits& limits) {
   limits.validate();
@@ -35,8 +104,7 @@ rig::Verdict predicted_verdict(const ErrorSummary& e, const AccuracyLimits& limi
   return score <= 1.0 ? rig::Verdict::rigid_safe : score <= 2.0 ? rig::Verdict::marginal : rig::Verdict::use_flexible;
 }
 
-Prediction predict_identification_error(const rig::RigModel& model, const rig::CheckResult& r,
-                                        const VirtualStudyOptions& o) {
+Prediction predict_identification_error(const rig::RigModel& model, const VirtualStudyOptions& o) {
   const rig::RigSystem truth(model);
   const IdentificationRig rigid = identification_rig(model, IdentificationAlgorithm::rigid);
   const IdentificationRig flexible = identification_rig(model, IdentificationAlgorithm::flexible);
@@ -45,7 +113,6 @@ Prediction predict_identification_error(const rig::RigModel& model, const rig::C
   p.sets = o.sets;
   p.histories = o.histories;
   p.duration_s = o.duration_s;
-  p.combined = r.verdict;
   if (!s.rigid->observable) {
     p.unobservable = s.rigid->unobservable;
     p.note = "the virtual measurement cannot identify every parameter (" + s.rigid->message + "). ";
@@ -70,7 +137,6 @@ Prediction predict_identification_error(const rig::RigModel& model, const rig::C
                "the identification (longer records, larger swings, inclined rods), not flexibility";
     }
   }
-  p.combined = rig::worse(r.verdict, p.verdict);
   return p;
 }
 

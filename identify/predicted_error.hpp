@@ -27,8 +27,8 @@ rig::Verdict predicted_verdict(const ErrorSummary& rigid, const AccuracyLimits& 
 // How far outside the accuracy limits (1 = on the limit), by the worst component.
 double accuracy_score(const ErrorSummary& e, const AccuracyLimits& limits = {});
 
-// The rigid algorithm's error on a short virtual measurement, and the verdict
-// that weighs it with the frequency ratio's.
+// The rigid algorithm's error on a short virtual measurement of the model,
+// and the verdict of that error alone.
 struct Prediction {
   int sets = 0, histories = 0;
   double duration_s = 0;
@@ -37,12 +37,21 @@ struct Prediction {
   std::optional<ErrorSummary> flexible;          // against the true body
   std::vector<std::string> unobservable;
   std::string note;
-  rig::Verdict verdict = rig::Verdict::rigid_safe;   // of the flexibility's error alone
-  rig::Verdict combined = rig::Verdict::rigid_safe;  // worse of ratio and that
+  rig::Verdict verdict = rig::Verdict::rigid_safe;  // of the error alone; conclude_check weighs it with the ratio
 };
 
-// `check` is the rig's design check (its verdict is the ratio's).
-Prediction predict_identification_error(const rig::RigModel& model, const rig::CheckResult& check,
-                                        const VirtualStudyOptions& options);
+Prediction predict_identification_error(const rig::RigModel& model, const VirtualStudyOptions& options);
+
+// The one verdict of `rigflex check`: the worse of the frequency ratio's and
+// the predicted error's, with which of them decided and why; and the one
+// piece of advice, how much stiffer and where, answering the stricter need.
+struct CheckConclusion {
+  rig::Verdict verdict = rig::Verdict::rigid_safe;
+  std::string reason;
+  std::optional<rig::StiffnessAdvice> advice;
+  std::string advice_reason;  // "frequency ratio" or "predicted error"
+};
+CheckConclusion conclude_check(const rig::CheckResult& check, const std::optional<Prediction>& prediction,
+                               const AccuracyLimits& limits = {});
 
 }  // namespace rigflex::identify

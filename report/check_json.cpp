@@ -5,13 +5,14 @@
 namespace rigflex::report {
 
 nlohmann::json check_json(const rig::RigModel& model, const rig::CheckResult& r,
-                          const std::optional<identify::Prediction>& p) {
+                          const std::optional<identify::Prediction>& p, const identify::CheckConclusion& c) {
   nlohmann::json j;
   j["rig"] = model.name;
   j["swing_frequencies_hz"] = r.swing_frequencies_hz;
   j["first_deformation_frequency_hz"] = optional_number<nlohmann::json>(r.first_deformation_frequency_hz);
   j["ratio"] = optional_number<nlohmann::json>(r.ratio);
-  j["verdict"] = rig::to_string(p ? p->combined : r.verdict);
+  j["verdict"] = rig::to_string(c.verdict);
+  j["verdict_reason"] = c.reason;
   j["ratio_verdict"] = rig::to_string(r.verdict);
   if (p) {
     nlohmann::json pe = {{"algorithm", "rigid"},
@@ -35,11 +36,12 @@ nlohmann::json check_json(const rig::RigModel& model, const rig::CheckResult& r,
   j["strain_energy_share"] = {{"fixed_frame", r.share_fixed_frame},
                               {"rods", r.share_rods},
                               {"carrying_frame", r.share_carrying_frame}};
-  if (r.advice) {
-    j["stiffen"] = {{"component", rig::to_string(r.advice->component)},
-                    {"stiffness_factor", optional_number<nlohmann::json>(r.advice->factor)},
-                    {"ratio_with_component_1e4_stiffer", r.advice->ratio_limit},
-                    {"message", r.advice->message}};
+  if (c.advice) {
+    j["stiffen"] = {{"component", rig::to_string(c.advice->component)},
+                    {"stiffness_factor", optional_number<nlohmann::json>(c.advice->factor)},
+                    {"because_of", c.advice_reason},
+                    {"message", c.advice->message}};
+    if (c.advice_reason == "frequency ratio") j["stiffen"]["ratio_with_component_1e4_stiffer"] = c.advice->ratio_limit;
   }
   nlohmann::json modes = nlohmann::json::array();
   for (const auto& m : r.linearization.modes) {

@@ -11,8 +11,10 @@
 
 namespace rigflex::report {
 
-// `prediction` is absent when the check ran without a virtual measurement.
+// `prediction` is absent when the check ran without a virtual measurement;
+// `conclusion` is identify::conclude_check of the two.
 nlohmann::json check_json(const rig::RigModel& model, const rig::CheckResult& check,
-                          const std::optional<identify::Prediction>& prediction);
+                          const std::optional<identify::Prediction>& prediction,
+                          const identify::CheckConclusion& conclusion);
 
 }  // namespace rigflex::report

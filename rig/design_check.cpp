@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace rigflex::rig {
@@ -31,14 +32,14 @@ Frequencies scaled(const RigModel& model, Component c, double s) {
   return frequencies_of(linearize(rig));
 }
 
-// Bisection on log(s) for ratio(s) = target over [1e-3, 1e4]: the ratio grows
-// with the stiffness of the component that dominates f1 until another
-// component or the swing takes over. A rig that finds no equilibrium at s
-// (a frame so soft that it sags by metres) counts as ratio 0.
+// Bisection on log(s) for ratio(s) = target over [1, 1e4], for a rig whose
+// ratio misses the target: the ratio grows with the stiffness of the
+// component that dominates f1 until another component or the swing takes
+// over. A rig that finds no equilibrium at s counts as ratio 0.
 StiffnessAdvice advise(const RigModel& model, Component c, double target) {
   StiffnessAdvice a;
   a.component = c;
-  constexpr double lo_bound = 1e-3, hi_bound = 1e4;
+  constexpr double hi_bound = 1e4;
   const auto ratio_at = [&](double s) {
     try {
       return scaled(model, c, s).ratio().value_or(HUGE_VAL);
@@ -47,25 +48,22 @@ StiffnessAdvice advise(const RigModel& model, Component c, double target) {
     }
   };
   a.ratio_limit = ratio_at(hi_bound);
-  const double r_lo = ratio_at(lo_bound);
   if (a.ratio_limit < target) {
     a.message = std::string("stiffening the ") + to_string(c) + " alone cannot reach the target: ratio " +
                 std::to_string(a.ratio_limit) + " at 1e4 times its stiffness; stiffen the other components too";
     return a;
   }
-  if (r_lo > target) {
-    a.factor = lo_bound;
-    a.message = "the target holds even at 1e-3 times the stiffness";
-    return a;
-  }
-  double lo = std::log(lo_bound), hi = std::log(hi_bound);
+  // Called only when ratio(1) < target: the factor lies in (1, 1e4].
+  double lo = 0.0, hi = std::log(hi_bound);
   for (int it = 0; it < 40 && hi - lo > 1e-4; ++it) {
     const double mid = 0.5 * (lo + hi);
     (ratio_at(std::exp(mid)) < target ? lo : hi) = mid;
   }
   a.factor = std::exp(hi);
-  a.message = std::string("multiply the stiffness of the ") + to_string(c) + " by " + std::to_string(*a.factor) +
-              " to bring the ratio to " + std::to_string(target);
+  char text[200];
+  std::snprintf(text, sizeof text, "make the %s %.3g times stiffer to bring the ratio to %g", to_string(c), *a.factor,
+                target);
+  a.message = text;
   return a;
 }
 
@@ -118,11 +116,10 @@ CheckResult design_check(const RigModel& model, const CheckOptions& options) {
     r.share_fixed_frame = first->strain.fixed_frame / total;
     r.share_rods = first->strain.rods / total;
     r.share_carrying_frame = first->strain.carrying_frame / total;
-    Component dominant = Component::fixed_frame;
     double best = r.share_fixed_frame;
-    if (r.share_rods > best) dominant = Component::rods, best = r.share_rods;
-    if (r.share_carrying_frame > best) dominant = Component::carrying_frame;
-    r.advice = advise(model, dominant, options.target_ratio);
+    if (r.share_rods > best) r.dominant = Component::rods, best = r.share_rods;
+    if (r.share_carrying_frame > best) r.dominant = Component::carrying_frame;
+    if (r.ratio && *r.ratio < options.target_ratio) r.advice = advise(model, r.dominant, options.target_ratio);
   }
   return r;
 }

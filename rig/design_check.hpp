@@ -24,10 +24,11 @@ struct CheckOptions {
   void validate() const;
 };
 
+// How much stiffer, and where: a factor above 1 on one component's stiffness.
 struct StiffnessAdvice {
   Component component = Component::fixed_frame;  // the dominant one in the first deformation mode
-  std::optional<double> factor;  // stiffness factor on it that brings the ratio to target
-  double ratio_limit = 0;        // ratio with that component infinitely stiff (bounded search)
+  std::optional<double> factor;  // > 1; none when stiffening this component alone cannot do it
+  double ratio_limit = 0;        // ratio with that component 1e4 times stiffer (bounded search)
   std::string message;
 };
 
@@ -38,7 +39,9 @@ struct CheckResult {
   Verdict verdict = Verdict::rigid_safe;
   // Strain energy shares in the first deformation mode (sum 1).
   double share_fixed_frame = 0, share_rods = 0, share_carrying_frame = 0;
+  // Set when the ratio misses the target: the factor that brings it there.
   std::optional<StiffnessAdvice> advice;
+  Component dominant = Component::fixed_frame;  // largest share in the first deformation mode
   Linearization linearization;
 };
 
