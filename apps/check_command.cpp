@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "apps/commands.hpp"
+#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/rig_reader.hpp"
 #include "io/rig_vtk.hpp"
@@ -105,7 +106,11 @@ int run(const CheckArgs& a) {
                      o.histories);
       };
     }
-    prediction = identify::predict_identification_error(model, o);
+    try {
+      prediction = identify::predict_identification_error(model, o);
+    } catch (const rig::IntegrationFailure& e) {
+      throw io::integration_error(e, model, {a.rig});
+    }
     print_prediction(*prediction);
   }
   const identify::CheckConclusion conclusion = identify::conclude_check(r, prediction);

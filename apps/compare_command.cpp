@@ -11,6 +11,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
+#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "report/compare_json.hpp"
 #include "io/mass_record.hpp"
@@ -80,8 +81,7 @@ std::string model_file_name(const MeasuredModel& mm, size_t i) {
   return mine;
 }
 
-int run(const CompareArgs& a) {
-  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
+int compare_with(MeasuredModel& mm, const CompareArgs& a) {
   report::CompareContext ctx;
   ctx.rig = mm.model.name;
   ctx.model_label = mm.label;
@@ -148,6 +148,15 @@ int run(const CompareArgs& a) {
   std::printf("wrote %s/compare.json, %s/compare.html and %zu model histories in %s/model\n", a.out.c_str(),
               a.out.c_str(), c.histories.size(), a.out.c_str());
   return 0;
+}
+
+int run(const CompareArgs& a) {
+  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
+  try {
+    return compare_with(mm, a);
+  } catch (const rig::IntegrationFailure& e) {
+    throw io::integration_error(e, mm.model, mm.model_files);
+  }
 }
 
 }  // namespace

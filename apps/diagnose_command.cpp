@@ -11,6 +11,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
+#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/effects_file.hpp"
 #include "report/compare_json.hpp"
@@ -41,8 +42,7 @@ std::string effects_file_text(const diagnose::EffectFit& e) {
   return io::effects_file_text({fitted.str(), e.advice + "."}, e.rig_block);
 }
 
-int run(const DiagnoseArgs& a) {
-  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
+int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   diagnose::DiagnosisOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
@@ -91,6 +91,15 @@ int run(const DiagnoseArgs& a) {
   std::printf("wrote %s/diagnosis.json, %s/diagnosis.html and the fitted effects in %s/effects\n", a.out.c_str(),
               a.out.c_str(), a.out.c_str());
   return 0;
+}
+
+int run(const DiagnoseArgs& a) {
+  MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
+  try {
+    return diagnose_with(mm, a);
+  } catch (const rig::IntegrationFailure& e) {
+    throw io::integration_error(e, mm.model, mm.model_files);
+  }
 }
 
 }  // namespace

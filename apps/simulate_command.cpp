@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "apps/commands.hpp"
+#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/rig_reader.hpp"
@@ -62,6 +63,8 @@ int run(const SimulateArgs& a) {
       return rig::simulate_measurement(rig, o);
     } catch (const rig::NoEquilibrium& e) {
       throw io::no_equilibrium_error(a.rig, model, e.what());
+    } catch (const rig::IntegrationFailure& e) {
+      throw io::integration_error(e, model, {a.rig});
     }
   }();
   io::FileBatch batch;

@@ -9,6 +9,7 @@
 #include "rig/equilibrium.hpp"
 #include "rig/generalized_alpha.hpp"
 #include "rig/pose_fit.hpp"
+#include "rig/simulation.hpp"
 
 namespace rigflex::diagnose {
 
@@ -102,13 +103,14 @@ void swing_initial_state(const ResponseModel& m, const SwingState& s, rig::Confi
   if (rig.fixed_dofs() > 0) v.xf += rate.segment(6 + rig.elastic_modes(), rig.fixed_dofs());
 }
 
-Eigen::MatrixXd predict_channels(const ResponseModel& m, const SwingState& s, const Eigen::VectorXd& t,
-                                 const ElasticState& elastic) {
-  if (t.size() < 2) throw std::invalid_argument("a record needs at least two samples");
+namespace {
+
+// The swing from state `s` sampled at `t` by either integrator (both have
+// reset, advance_to and state).
+template <typename Integrator>
+Eigen::MatrixXd sampled_channels(Integrator& integ, const ResponseModel& m, const SwingState& s,
+                                 const Eigen::VectorXd& t, const ElasticState& elastic) {
   const rig::RigSystem& rig = m.system;
-  const rig::SimulationOptions& so = rig.model().simulation;
-  const double step = generalized_alpha_step(m.linearization, 1.0 / median_step(t), m.resolve_hz);
-  rig::GeneralizedAlpha integ(rig, m.linearization, step, so.position_tolerance);
   rig::Configuration c;
   rig::Velocity v;
   swing_initial_state(m, s, c, v, elastic);
@@ -124,6 +126,23 @@ Eigen::MatrixXd predict_channels(const ResponseModel& m, const SwingState& s, co
     out.row(k) << sample.force.transpose(), sample.alpha.transpose(), sample.beta.transpose();
   }
   return out;
+}
+
+}  // namespace
+
+// The rig file's `simulation.method` decides, as in `rigflex simulate`.
+Eigen::MatrixXd predict_channels(const ResponseModel& m, const SwingState& s, const Eigen::VectorXd& t,
+                                 const ElasticState& elastic) {
+  if (t.size() < 2) throw std::invalid_argument("a record needs at least two samples");
+  const rig::RigSystem& rig = m.system;
+  const rig::SimulationOptions& so = rig.model().simulation;
+  if (so.method == rig::IntegrationMethod::bdf) {
+    rig::Integrator integ(rig, so);
+    return sampled_channels(integ, m, s, t, elastic);
+  }
+  const double step = generalized_alpha_step(m.linearization, 1.0 / median_step(t), m.resolve_hz);
+  rig::GeneralizedAlpha integ(rig, m.linearization, step, so.position_tolerance);
+  return sampled_channels(integ, m, s, t, elastic);
 }
 
 SwingState swing_state_from_encoders(const ResponseModel& m, const Eigen::VectorXd& t, const Eigen::MatrixXd& channels,

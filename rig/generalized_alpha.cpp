@@ -195,8 +195,7 @@ void GeneralizedAlpha::step(double h) {
     previous = moved;
     if (slow || it + 1 == kMaxIterations) {
       if (refreshes == kMaxRefreshes) {
-        throw std::runtime_error("generalized-alpha: Newton iterations did not converge at t = " +
-                                 std::to_string(t1) + " s");
+        throw IntegrationFailure("generalized-alpha", t1, "Newton iterations did not converge");
       }
       update();
       refresh_tangents(c1, v1, t1);

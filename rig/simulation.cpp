@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -130,7 +131,13 @@ void Integrator::advance_to(double t_out) {
   Impl& im = *impl_;
   if (t_out == t_) return;
   sunrealtype reached = t_;
-  check(CVode(im.mem, t_out, im.y, &reached, CV_NORMAL), "CVode");
+  const int flag = CVode(im.mem, t_out, im.y, &reached, CV_NORMAL);
+  if (flag < 0) {
+    char* name = CVodeGetReturnFlagName(flag);  // malloc'ed by SUNDIALS
+    const std::string why = std::string("CVode failed (") + (name ? name : "?") + ")";
+    std::free(name);
+    throw IntegrationFailure("CVODE BDF", reached, why);
+  }
   t_ = reached;
 }
 
