@@ -11,7 +11,6 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
-#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "report/compare_json.hpp"
 #include "io/mass_record.hpp"
@@ -152,11 +151,7 @@ int compare_with(MeasuredModel& mm, const CompareArgs& a) {
 
 int run(const CompareArgs& a) {
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
-  try {
-    return compare_with(mm, a);
-  } catch (const rig::IntegrationFailure& e) {
-    throw io::integration_error(e, mm.model, mm.model_files);
-  }
+  return run_on_measured_model(mm, [&] { return compare_with(mm, a); });
 }
 
 }  // namespace

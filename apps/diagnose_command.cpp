@@ -11,7 +11,6 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
-#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/effects_file.hpp"
 #include "report/compare_json.hpp"
@@ -95,11 +94,7 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
 
 int run(const DiagnoseArgs& a) {
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
-  try {
-    return diagnose_with(mm, a);
-  } catch (const rig::IntegrationFailure& e) {
-    throw io::integration_error(e, mm.model, mm.model_files);
-  }
+  return run_on_measured_model(mm, [&] { return diagnose_with(mm, a); });
 }
 
 }  // namespace

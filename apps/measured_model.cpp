@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "io/input_error.hpp"
+#include "io/integration_error.hpp"
 #include "io/measurement_csv.hpp"
 #include "io/rig_reader.hpp"
 
@@ -47,6 +48,14 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
 
 void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e) {
   throw io::record_input_error(mm.records, e);
+}
+
+int run_on_measured_model(const MeasuredModel& mm, const std::function<int()>& work) {
+  try {
+    return work();
+  } catch (const rig::IntegrationFailure& e) {
+    throw io::integration_error(e, mm.model, mm.model_files);
+  }
 }
 
 }  // namespace rigflex::app

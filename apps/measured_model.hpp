@@ -4,6 +4,7 @@
 // read from (its provenance), which turns a record error back into the
 // file and line.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct MeasuredModel {
 
 MeasuredModel read_measured_model(const std::string& rig_file, const std::vector<std::string>& effects_files,
                                   const std::vector<std::string>& data, bool quiet, const char* command);
+
+// Runs a command's work on mm: an integrator failure during it becomes the
+// InputError that names mm's rig and effects files (io::integration_error).
+int run_on_measured_model(const MeasuredModel& mm, const std::function<int()>& work);
 
 // The InputError for a record error of one of mm's records (its file and line).
 [[noreturn]] void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e);
