@@ -14,6 +14,7 @@ namespace {
 constexpr double kRhoInfinity = 0.8;
 constexpr int kMaxIterations = 8;
 constexpr int kMaxRefreshes = 3;  // per step
+constexpr double kMaxHalvings = 64;  // shortest step: h / 64
 
 Eigen::VectorXd to_vector(const Velocity& v) {
   Eigen::VectorXd x(6 + v.eta.size() + v.xf.size());
@@ -161,6 +162,26 @@ void GeneralizedAlpha::advance_to(double t_out) {
 }
 
 void GeneralizedAlpha::step(double h) {
+  // A step whose Newton iterations do not converge is taken again as two
+  // halves: a light joint on a stiff rod, started away from its quasi-static
+  // place (a fitted elastic state, a probe of one), moves by millimetres in
+  // the first step, far outside the tangent the iterations start from; a
+  // shorter step keeps the predictor near the answer. The state is only
+  // committed by a converged step.
+  if (try_step(h)) return;
+  if (h < h_ / kMaxHalvings) {
+    throw IntegrationFailure("generalized-alpha", t_ + h,
+                             "Newton iterations did not converge, even with the step halved " +
+                                 std::to_string(static_cast<int>(std::log2(kMaxHalvings))) + " times");
+  }
+  ++stats_.halvings;
+  // The failed iterations left the tangent of a state far off: take it anew here.
+  refresh_tangents(c_, v_, t_);
+  step(0.5 * h);
+  step(0.5 * h);
+}
+
+bool GeneralizedAlpha::try_step(double h) {
   if (h != S_step_) factorize(h, K_);
   const double c = (1.0 - alpha_f_) / (1.0 - alpha_m_);
   const double t1 = t_ + h;
@@ -194,9 +215,7 @@ void GeneralizedAlpha::step(double h) {
     const bool slow = it >= 1 && moved > 0.1 * previous;
     previous = moved;
     if (slow || it + 1 == kMaxIterations) {
-      if (refreshes == kMaxRefreshes) {
-        throw IntegrationFailure("generalized-alpha", t1, "Newton iterations did not converge");
-      }
+      if (refreshes == kMaxRefreshes) return false;
       update();
       refresh_tangents(c1, v1, t1);
       factorize(h, K_);
@@ -214,6 +233,7 @@ void GeneralizedAlpha::step(double h) {
   vdot_ = vd;
   a_ = a1;
   ++stats_.steps;
+  return true;
 }
 
 void GeneralizedAlpha::state(Configuration& c, Velocity& v) const {

@@ -45,6 +45,7 @@ class GeneralizedAlpha {
 
  private:
   void step(double h);
+  bool try_step(double h);  // false: Newton did not converge; nothing committed
   void factorize(double h, const Eigen::MatrixXd& K);
   Eigen::VectorXd accelerations(const Configuration& c, const Eigen::VectorXd& v, double t);
   // M vdot - (Q - gyroscopic terms) at (c, v, t), into residual_.

@@ -31,6 +31,7 @@ class IntegrationFailure : public std::runtime_error {
 struct IntegratorStatistics {
   long steps = 0, rhs_evaluations = 0, jacobian_evaluations = 0, error_test_failures = 0;
   long linear_setups = 0, newton_iterations = 0;
+  long halvings = 0;  // generalized-alpha: steps taken again as two halves
 };
 
 // The raised-cosine push of the release protocol.

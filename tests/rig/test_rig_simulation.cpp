@@ -8,6 +8,7 @@
 #include "rig/effects.hpp"
 #include "rig/encoder.hpp"
 #include "rig/generalized_alpha.hpp"
+#include "rig/joint_compliance.hpp"
 #include "rig/linearization.hpp"
 #include "support/rig_cases.hpp"
 #include "rig/simulation.hpp"
@@ -215,4 +216,51 @@ TEST(RigSimulation, GeneralizedAlphaResolvesTheRodBounce) {
   EXPECT_NEAR(rig::generalized_alpha_step(lin, 500.0, 0.0), 0.002 / std::ceil(0.002 * 30 * f_bounce - 1e-9), 1e-15);
   // simulation.resolve_hz asks for more: 30 steps per period at 100 Hz.
   EXPECT_LE(rig::generalized_alpha_step(lin, 500.0, 100.0), 1.0 / 3000.0);
+}
+
+TEST(RigSimulation, GeneralizedAlphaHalvesAStepItsNewtonIterationsCannotTake) {
+  // A fixed frame of joint springs (rig/joint_compliance: light joints,
+  // 0.07 kg each) under rods that are rigid (axial stiffness ~1e8 N/m),
+  // started with the upper joints 10 um off their quasi-static place along
+  // each axis (a fitted elastic state, or a frame released deflected): a
+  // joint moves by millimetres in the first 2 ms step, beyond what the
+  // Newton iterations converge from. The step is taken again in halves; the
+  // swing that follows matches a run at a quarter of the step.
+  rig::RigModel model = test::noisy_trifilar();
+  rig::FixedJointCompliance c;
+  c.joints = {Vec3(3.2e-6, 9.1e-6, 1.1e-6), Vec3(6.2e-6, 3.2e-6, 1.1e-6), Vec3(3.2e-6, 6.2e-6, 2.6e-6)};
+  c.sway = Eigen::Vector2d(3.0e-6, 1.5e-6);
+  model.effects.push_back(
+      std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(model.geometry, 200.0, c)));
+  const rig::RigSystem rig(model);
+  const rig::Linearization lin = rig::linearize(rig);
+  ASSERT_EQ(rig.fixed_dofs(), 9);
+  Eigen::VectorXd ds = Eigen::VectorXd::Zero(rig.coordinate_count());
+  ds(0) = 0.03;                    // a swing of 30 mm
+  ds.tail(9).setConstant(-1e-5);   // every joint 10 um off along each axis
+  const rig::Configuration start = rig.displaced(lin.equilibrium.configuration, ds);
+  const double h = rig::generalized_alpha_step(lin, 500.0);
+  rig::GeneralizedAlpha coarse(rig, lin, h, 1e-10), fine(rig, lin, 0.25 * h, 1e-10);
+  coarse.reset(0.0, start, rig.at_rest());
+  fine.reset(0.0, start, rig.at_rest());
+  coarse.advance_to(1.0);
+  fine.advance_to(1.0);
+  EXPECT_GT(coarse.statistics().halvings, 0);  // the case needs halving: without it the first step throws
+  rig::Configuration a, b;
+  rig::Velocity va, vb;
+  coarse.state(a, va);
+  fine.state(b, vb);
+  // Bound: the two step sizes dissipate the joints' start-up vibration
+  // differently, and at most its energy reaches the swing. Energy in the
+  // swing amplitude A goes as A^2, so the swing's position can differ by
+  // A E_joints / E_swing at most (both energies from the linearization's K).
+  Eigen::VectorXd joints = Eigen::VectorXd::Zero(ds.size()), swing = joints;
+  joints.tail(9) = ds.tail(9);
+  swing(0) = ds(0);
+  const double e_joints = 0.5 * joints.dot(lin.K * joints), e_swing = 0.5 * swing.dot(lin.K * swing);
+  const double bound = ds(0) * e_joints / e_swing;
+  EXPECT_LT(bound, 0.1 * ds(0));  // the joints' start-up is small against the swing
+  EXPECT_LT((a.r - b.r).head<2>().norm(), bound) << "energy ratio " << e_joints / e_swing;
+  ::testing::Test::RecordProperty("difference_m", std::to_string((a.r - b.r).head<2>().norm()));
+  ::testing::Test::RecordProperty("bound_m", std::to_string(bound));
 }
