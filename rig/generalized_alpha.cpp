@@ -14,7 +14,7 @@ namespace {
 constexpr double kRhoInfinity = 0.8;
 constexpr int kMaxIterations = 8;
 constexpr int kMaxRefreshes = 3;  // per step
-constexpr double kMaxHalvings = 64;  // shortest step: h / 64
+constexpr int kMaxHalvings = 6;  // shortest step: h / 2^6
 
 Eigen::VectorXd to_vector(const Velocity& v) {
   Eigen::VectorXd x(6 + v.eta.size() + v.xf.size());
@@ -161,7 +161,7 @@ void GeneralizedAlpha::advance_to(double t_out) {
   }
 }
 
-void GeneralizedAlpha::step(double h) {
+void GeneralizedAlpha::step(double h, int halvings) {
   // A step whose Newton iterations do not converge is taken again as two
   // halves: a light joint on a stiff rod, started away from its quasi-static
   // place (a fitted elastic state, a probe of one), moves by millimetres in
@@ -169,16 +169,16 @@ void GeneralizedAlpha::step(double h) {
   // shorter step keeps the predictor near the answer. The state is only
   // committed by a converged step.
   if (try_step(h)) return;
-  if (h < h_ / kMaxHalvings) {
+  if (halvings == kMaxHalvings) {
     throw IntegrationFailure("generalized-alpha", t_ + h,
                              "Newton iterations did not converge, even with the step halved " +
-                                 std::to_string(static_cast<int>(std::log2(kMaxHalvings))) + " times");
+                                 std::to_string(kMaxHalvings) + " times");
   }
   ++stats_.halvings;
   // The failed iterations left the tangent of a state far off: take it anew here.
   refresh_tangents(c_, v_, t_);
-  step(0.5 * h);
-  step(0.5 * h);
+  step(0.5 * h, halvings + 1);
+  step(0.5 * h, halvings + 1);
 }
 
 bool GeneralizedAlpha::try_step(double h) {

@@ -44,7 +44,7 @@ class GeneralizedAlpha {
   const IntegratorStatistics& statistics() const { return stats_; }
 
  private:
-  void step(double h);
+  void step(double h, int halvings = 0);  // halvings: how often h was already halved
   bool try_step(double h);  // false: Newton did not converge; nothing committed
   void factorize(double h, const Eigen::MatrixXd& K);
   Eigen::VectorXd accelerations(const Configuration& c, const Eigen::VectorXd& v, double t);
