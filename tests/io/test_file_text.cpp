@@ -10,6 +10,7 @@
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
 #include "support/gzip_file.hpp"
+#include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
 
 namespace rigflex {
@@ -27,13 +28,7 @@ const std::string kCsv =
 
 // The error of reading `file`; fails the test if there is none.
 io::InputError error_reading(const fs::path& file) {
-  try {
-    io::read_record_csv(file);
-  } catch (const io::InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error reading " << file;
-  return io::InputError("", 0, "", "");
+  return test::input_error_of([&] { io::read_record_csv(file); }, file.string());
 }
 
 TEST(CompressedFiles, ACsvGzReadsAsTheCsvItHolds) {

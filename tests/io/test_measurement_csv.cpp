@@ -17,6 +17,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
@@ -43,13 +44,7 @@ Record parse(const std::string& text, int expected_rods = 0) {
 
 // The error of parsing `text`; fails the test if there is none.
 io::InputError error_of(const std::string& text, int expected_rods = 0) {
-  try {
-    parse(text, expected_rods);
-  } catch (const io::InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return io::InputError("", 0, "", "");
+  return test::input_error_of([&] { parse(text, expected_rods); }, "the text:\n" + text);
 }
 
 void expect_error(const io::InputError& e, int line, const std::string& key, const std::string& words) {

@@ -4,6 +4,7 @@
 #include "io/input_error.hpp"
 #include "io/model_formats.hpp"
 #include "io/model_reader.hpp"
+#include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
 #include "support/text_edits.hpp"
 
@@ -33,13 +34,7 @@ beams:
 
 // Parses `text` and returns the error; fails the test if none is thrown.
 io::InputError error_of(const std::string& text) {
-  try {
-    io::parse_model(text, "bad.yaml");
-  } catch (const io::InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return io::InputError("", 0, "", "");
+  return test::input_error_of([&] { io::parse_model(text, "bad.yaml"); }, "the text:\n" + text);
 }
 
 TEST(ModelReader, ReadsAValidModel) {

@@ -17,6 +17,7 @@
 #include <random>
 #include <set>
 
+#include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
 #include "support/text_edits.hpp"
 #include "io/input_error.hpp"
@@ -258,13 +259,7 @@ const std::set<std::string> kExportFiles = {"reduced.json", "reduced.mat", "K.mt
 // ---------------------------------------------------------------- Matrix Market
 
 io::InputError mm_error(const std::string& text, const std::optional<io::MatrixShape>& expected = std::nullopt) {
-  try {
-    io::parse_matrix_market(text, "bad.mtx", expected);
-  } catch (const io::InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for:\n" << text;
-  return io::InputError("", 0, "", "");
+  return test::input_error_of([&] { io::parse_matrix_market(text, "bad.mtx", expected); }, "the text:\n" + text);
 }
 
 void expect_error(const io::InputError& e, int line, const std::string& words) {
@@ -490,13 +485,7 @@ TEST(ReducedExport, MatFileReadsBackBitExact) {
 }
 
 io::InputError mat_error(const fs::path& file) {
-  try {
-    io::read_reduced_mat(file);
-  } catch (const io::InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no error for " << file;
-  return io::InputError("", 0, "", "");
+  return test::input_error_of([&] { io::read_reduced_mat(file); }, file.string());
 }
 
 TEST(ReducedExport, MatReaderRefusesWhatIsNotAReducedFrame) {
