@@ -41,6 +41,30 @@ std::string effects_file_text(const diagnose::EffectFit& e) {
   return io::effects_file_text({fitted.str(), e.advice + "."}, e.rig_block);
 }
 
+// The body's offsets from the rig file fitted with the verdict's model: what
+// to correct in the rig file's `body` (those marked "off" lie beyond what
+// its `uncertainty` states).
+void print_body(const diagnose::Diagnosis& d) {
+  if (d.body.empty()) {
+    double misfit = d.noise_ratio;
+    for (const auto& e : d.ranking) {
+      if (d.missing_effect && e.effect == *d.missing_effect) misfit = e.residual / d.samples;
+    }
+    std::printf("body: as the rig file gives it (the fit with %s stays at %.3g x the noise; there the body's offsets "
+                "would absorb the model's remaining error)\n",
+                d.missing_effect ? d.missing_effect->c_str() : "the model as it is", misfit);
+    return;
+  }
+  std::printf("body fitted with %s (offset from the rig file, its std, the stated std):\n",
+              d.missing_effect ? d.missing_effect->c_str() : "the model as it is");
+  for (const auto& p : d.body) {
+    const double k = p.unit == "m" ? 1e3 : 1.0;
+    const char* unit = p.unit == "m" ? "mm" : p.unit.c_str();
+    std::printf("  %-6s %+10.4g +- %-9.3g %s (stated %.3g)%s\n", p.name.c_str(), k * p.value, k * p.std, unit,
+                k * p.prior_std, p.off ? "  OFF" : "");
+  }
+}
+
 int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   diagnose::DiagnosisOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
@@ -66,6 +90,7 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
                 e.significant ? "yes" : "no", e.plausible ? "yes" : "no", e.p_value);
   }
   std::printf("%s (baseline residual %.2f x the noise)\n", d.summary.c_str(), d.noise_ratio);
+  print_body(d);
   if (d.missing_effect) {
     for (const auto& e : d.ranking) {
       if (e.effect != *d.missing_effect) continue;

@@ -1,15 +1,13 @@
 #include "diagnose/diagnosis.hpp"
 
-#include <Eigen/Cholesky>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
-#include <memory>
-#include <numbers>
+#include <cstdio>
 #include <stdexcept>
 
 #include "diagnose/effect_candidates.hpp"
+#include "diagnose/joint_fit.hpp"
 #include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
 #include "identify/identification_kinematics.hpp"
@@ -37,277 +35,11 @@ void DiagnosisOptions::validate() const {
 
 namespace {
 
-using Residuals = std::vector<Eigen::VectorXd>;
-
-double sum_squares(const Residuals& r) {
-  double s = 0;
-  for (const auto& x : r) s += x.squaredNorm();
-  return s;
-}
-
 double lowest_swing_hz(const ResponseModel& m) {
   for (const auto& mode : m.linearization.modes) {
     if (mode.kind == rig::RigModeKind::swing) return mode.frequency_hz;
   }
   return 0.0;
-}
-
-SwingState state_steps(const ResponseModel& m) {
-  double L = 0;
-  for (const auto& r : m.system.assembly().geometry.rods) L += r.length / m.system.rods();
-  const double w = 2.0 * std::numbers::pi * std::max(lowest_swing_hz(m), 0.1);
-  SwingState s;
-  s << L, L, 1.0, L * w, L * w, w;
-  return 5e-6 * s;
-}
-
-class Fitter {
- public:
-  Fitter(const rig::RigModel& model, const ResponseModel& base, std::vector<const BandTarget*> targets, int threads)
-      : model_(model), base_(base), targets_(std::move(targets)), threads_(threads) {
-    set_horizon(INFINITY);
-  }
-
-  // Residuals over the first `seconds` of every record only.
-  void set_horizon(double seconds) {
-    rows_.clear();
-    for (const auto* t : targets_) rows_.push_back(std::isfinite(seconds) ? t->rows_within(seconds) : -1);
-  }
-  bool horizon_covers_all() const {
-    for (size_t j = 0; j < targets_.size(); ++j) {
-      if (rows_[j] >= 0 && rows_[j] < static_cast<Eigen::Index>(targets_[j]->at.size())) return false;
-    }
-    return true;
-  }
-
-  int histories() const { return static_cast<int>(targets_.size()); }
-
-  Residuals residuals(const ResponseModel& m, const std::vector<SwingState>& s) const {
-    Residuals r(targets_.size());
-    rig::parallel_for(histories(), threads_, [&](int j) { r[j] = band_residual(m, s[j], *targets_[j], rows_[j]); });
-    return r;
-  }
-
-  // d(model)/d(state) per history (the residual's negative), forward differences.
-  std::vector<Eigen::MatrixXd> state_jacobians(const ResponseModel& m, const std::vector<SwingState>& s,
-                                               const Residuals& r0) const {
-    const SwingState h = state_steps(base_);
-    std::vector<Eigen::MatrixXd> J(targets_.size());
-    for (size_t j = 0; j < targets_.size(); ++j) J[j].resize(r0[j].size(), 6);
-    rig::parallel_for(6 * histories(), threads_, [&](int task) {
-      const int j = task / 6, k = task % 6;
-      SwingState sp = s[j];
-      sp(k) += h(k);
-      J[j].col(k) = (r0[j] - band_residual(m, sp, *targets_[j], rows_[j])) / h(k);
-    });
-    return J;
-  }
-
-  // Parameter sensitivities of a candidate at theta: one model per parameter, probed.
-  std::vector<Eigen::MatrixXd> parameter_jacobians(const EffectCandidate& c, const Eigen::VectorXd& theta,
-                                                   const std::vector<SwingState>& s, const Residuals& r0) const {
-    const int p = static_cast<int>(c.parameters.size());
-    std::vector<std::unique_ptr<ResponseModel>> probes(p);
-    rig::parallel_for(p, threads_, [&](int k) {
-      Eigen::VectorXd th = theta;
-      th(k) += c.parameters[k].probe;
-      probes[k] = std::make_unique<ResponseModel>(with_effect(c, th));
-    });
-    std::vector<Eigen::MatrixXd> J(targets_.size());
-    for (size_t j = 0; j < targets_.size(); ++j) J[j].resize(r0[j].size(), p);
-    rig::parallel_for(p * histories(), threads_, [&](int task) {
-      const int j = task / p, k = task % p;
-      J[j].col(k) = (r0[j] - band_residual(*probes[k], s[j], *targets_[j], rows_[j])) / c.parameters[k].probe;
-    });
-    return J;
-  }
-
-  rig::RigModel with_effect(const EffectCandidate* c, const Eigen::VectorXd& theta) const {
-    if (!c) return model_;
-    return with_effect(*c, theta);
-  }
-  rig::RigModel with_effect(const EffectCandidate& c, const Eigen::VectorXd& theta) const {
-    rig::RigModel m = model_;
-    if (auto e = c.make(theta)) m.effects.push_back(std::move(e));
-    return m;
-  }
-
- private:
-  const rig::RigModel& model_;
-  const ResponseModel& base_;
-  std::vector<const BandTarget*> targets_;
-  int threads_;
-  std::vector<Eigen::Index> rows_;
-};
-
-// The linearized least-squares step for the states of every history and the
-// shared parameters, the states eliminated history by history (Schur
-// complement). Parameters are scaled by their probes; directions the data
-// cannot fix are left out by a pseudo-inverse.
-struct Step {
-  std::vector<SwingState> ds;
-  Eigen::VectorXd dtheta;
-  Eigen::MatrixXd schur_inverse;  // scaled parameters
-  double predicted = 0;           // predicted sum of squares after the step
-};
-
-Step gauss_newton(const std::vector<Eigen::MatrixXd>& Js, const std::vector<Eigen::MatrixXd>& Jt,
-                  const Residuals& r, const Eigen::VectorXd& scale) {
-  const Eigen::Index p = scale.size();
-  const size_t H = Js.size();
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(p, p);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(p);
-  std::vector<Eigen::LDLT<Eigen::Matrix<double, 6, 6>>> A(H);
-  std::vector<Eigen::MatrixXd> B(H);
-  std::vector<SwingState> a(H);
-  for (size_t j = 0; j < H; ++j) {
-    Eigen::Matrix<double, 6, 6> Aj = Js[j].transpose() * Js[j];
-    Aj.diagonal() += Eigen::Matrix<double, 6, 1>::Constant(1e-12 * Aj.diagonal().maxCoeff());
-    A[j].compute(Aj);
-    a[j] = Js[j].transpose() * r[j];
-    if (p > 0) {
-      const Eigen::MatrixXd Jtj = Jt[j] * scale.asDiagonal();
-      B[j] = Js[j].transpose() * Jtj;
-      S += Jtj.transpose() * Jtj - B[j].transpose() * A[j].solve(B[j]);
-      b += Jtj.transpose() * r[j] - B[j].transpose() * A[j].solve(a[j]);
-    }
-  }
-  Step st;
-  st.dtheta = Eigen::VectorXd::Zero(p);
-  st.schur_inverse = Eigen::MatrixXd::Zero(p, p);
-  if (p > 0) {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const Eigen::VectorXd sv = svd.singularValues();
-    Eigen::VectorXd inv = Eigen::VectorXd::Zero(p);
-    for (Eigen::Index i = 0; i < p; ++i) {
-      if (sv(i) > 1e-10 * sv(0)) inv(i) = 1.0 / sv(i);
-    }
-    st.schur_inverse = svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose();
-    st.dtheta = st.schur_inverse * b;
-  }
-  st.ds.resize(H);
-  st.predicted = 0;
-  for (size_t j = 0; j < H; ++j) {
-    Eigen::VectorXd rhs = a[j];
-    if (p > 0) rhs -= B[j] * st.dtheta;
-    st.ds[j] = A[j].solve(rhs);
-    Eigen::VectorXd rj = r[j] - Js[j] * st.ds[j];
-    if (p > 0) rj -= Jt[j] * (scale.asDiagonal() * st.dtheta);
-    st.predicted += rj.squaredNorm();
-  }
-  st.dtheta = scale.asDiagonal() * st.dtheta;  // back to parameter units
-  return st;
-}
-
-// Where a fit stands: parameters, states, residuals.
-struct FitPoint {
-  Eigen::VectorXd theta;
-  std::vector<SwingState> states;
-  Residuals r;
-  double cost = 0;
-};
-
-struct FitOutcome {
-  FitPoint at;
-  double first_predicted = 0;       // sum of squares the first linearized step predicted
-  Eigen::MatrixXd schur_inverse;    // of the last linearization (scaled parameters)
-  int steps = 0, linearizations = 1;
-  std::string note;
-};
-
-// Gauss-Newton with step halving on the nonlinear model: chord steps on the
-// Jacobians of the last linearization while they make progress, then a new
-// linearization, while that still gains more than 1 % (a large effect moves
-// the swing's phase by radians over a record, beyond one linearization).
-FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start,
-                         std::vector<Eigen::MatrixXd> Js, std::vector<Eigen::MatrixXd> Jt,
-                         const DiagnosisOptions& options) {
-  const int p = c ? static_cast<int>(c->parameters.size()) : 0;
-  const int H = fit.histories();
-  Eigen::VectorXd scale(p);
-  for (int k = 0; k < p; ++k) scale(k) = c->parameters[k].probe;
-  FitOutcome out;
-  out.at = std::move(start);
-  bool first = true;
-  for (int lin = 0; lin <= options.relinearizations; ++lin) {
-    const double cost_before = out.at.cost;
-    bool converged = false;
-    for (int it = 0; it <= options.refinements && !converged; ++it) {
-      const Step st = gauss_newton(Js, Jt, out.at.r, scale);
-      if (it == 0) out.schur_inverse = st.schur_inverse;
-      if (first) out.first_predicted = st.predicted, first = false;
-      bool accepted = false;
-      for (double lambda = 1.0; lambda >= 0.125 && !accepted; lambda *= 0.5) {
-        FitPoint trial;
-        trial.theta = out.at.theta + lambda * st.dtheta;
-        for (int k = 0; k < p; ++k) {
-          if (c->parameters[k].non_negative) trial.theta(k) = std::max(trial.theta(k), 0.0);
-        }
-        trial.states = out.at.states;
-        for (int j = 0; j < H; ++j) trial.states[j] += lambda * st.ds[j];
-        try {
-          const ResponseModel m(fit.with_effect(c, trial.theta));
-          trial.r = fit.residuals(m, trial.states);
-          trial.cost = sum_squares(trial.r);
-        } catch (const std::exception& x) {
-          out.note = std::string("a step gave a rig that could not be simulated: ") + x.what();
-          continue;
-        }
-        if (trial.cost < out.at.cost) {
-          converged = (out.at.cost - trial.cost) < 1e-4 * out.at.cost;
-          out.at = std::move(trial);
-          accepted = true;
-          ++out.steps;
-        }
-      }
-      if (!accepted) break;
-    }
-    const bool gained = out.at.cost < 0.99 * cost_before;
-    if (!gained || lin == options.relinearizations) break;
-    // Linearize again where the fit now stands.
-    try {
-      const ResponseModel m(fit.with_effect(c, out.at.theta));
-      Js = fit.state_jacobians(m, out.at.states, out.at.r);
-      if (c) Jt = fit.parameter_jacobians(*c, out.at.theta, out.at.states, out.at.r);
-      ++out.linearizations;
-    } catch (const std::exception& x) {
-      out.note = std::string("a linearization failed: ") + x.what();
-      break;
-    }
-  }
-  return out;
-}
-
-// The same fit by continuation over the record's length: from the first
-// 2 x fit_window seconds, doubling, to the whole record, each stage started
-// where the last ended. A large effect shifts the swing's phase by radians
-// over a whole record but little over its first seconds, so each stage
-// starts inside the next one's basin where one linearization over the
-// whole record may not.
-FitOutcome fit_by_continuation(Fitter& fit, const EffectCandidate* c, const std::vector<SwingState>& states,
-                               const DiagnosisOptions& options) {
-  const int p = c ? static_cast<int>(c->parameters.size()) : 0;
-  FitPoint pt;
-  pt.theta = Eigen::VectorXd::Zero(p);
-  pt.states = states;
-  FitOutcome o;
-  for (double horizon = 2.0 * options.compare.fit_window_s;; horizon *= 2.0) {
-    fit.set_horizon(horizon);
-    const bool last = fit.horizon_covers_all();
-    if (last) fit.set_horizon(INFINITY);
-    const ResponseModel m(fit.with_effect(c, pt.theta));
-    pt.r = fit.residuals(m, pt.states);
-    pt.cost = sum_squares(pt.r);
-    auto Js = fit.state_jacobians(m, pt.states, pt.r);
-    std::vector<Eigen::MatrixXd> Jt(static_cast<size_t>(fit.histories()));
-    if (c) Jt = fit.parameter_jacobians(*c, pt.theta, pt.states, pt.r);
-    DiagnosisOptions stage = options;
-    if (!last) stage.relinearizations = 0;
-    o = fit_nonlinear(fit, c, pt, Js, Jt, stage);
-    pt = o.at;
-    if (last) break;
-  }
-  return o;
 }
 
 double f_test_p_value(double improvement, double dof1, double residual, double dof2) {
@@ -318,15 +50,20 @@ double f_test_p_value(double improvement, double dof1, double residual, double d
   return boost::math::cdf(boost::math::complement(dist, F));
 }
 
-// Where every candidate's fit starts: the baseline, the states refitted to
-// the whole record (no parameters), and its one linearization, shared.
+// The baseline: the model as it is, the body refitted (`at`); and where
+// every candidate's fit starts: the swing states refitted to the whole
+// records with the body as the rig file gives it (`start`), and the
+// Jacobians there, shared. Candidates start from the rig file's body, not
+// from the baseline's: a model that misses an effect by far more than the
+// noise pulls the body to wherever it absorbs most of the effect, a start
+// from which the effect's own fit may not recover.
 struct Baseline {
   std::vector<SwingState> initial_states;  // compare's, where a continuation fit starts
-  std::vector<SwingState> states;
-  Residuals r;
-  double rss = 0;
-  std::vector<Eigen::MatrixXd> Js;
-  double dof = 0;  // the F test's residual degrees of freedom before any parameter
+  FitPoint start;                          // theta: zero body offsets
+  std::vector<Eigen::MatrixXd> Js, Jbody;  // at `start`
+  FitPoint at;                             // theta: the body's fitted offsets
+  Eigen::MatrixXd schur_inverse;
+  double dof = 0;  // the F test's residual degrees of freedom before any effect parameter
 };
 
 void progress(const DiagnosisOptions& options, const std::string& s) {
@@ -351,30 +88,33 @@ void compare_histories(const ResponseModel& base, const std::vector<const rig::R
   d.baseline_analysis = analyse_residuals(base, d.baseline);
 }
 
-// The baseline fit, and the diagnosis' residual, sample count and noise ratio.
-Baseline fit_baseline(Fitter& fit, const ResponseModel& base, const std::vector<const BandTarget*>& targets,
-                      const std::vector<SwingState>& states, const DiagnosisOptions& options, Diagnosis& d) {
+// The baseline fits (states alone, then states and body), and the
+// diagnosis' residual, sample count and noise ratio.
+Baseline fit_baseline(Fitter& fit, const rig::RigModel& model, const ResponseModel& base,
+                      const std::vector<const BandTarget*>& targets, const std::vector<SwingState>& states,
+                      const DiagnosisOptions& options, Diagnosis& d) {
   const int H = fit.histories();
   Baseline b;
   b.initial_states = states;
-  FitPoint start;
-  start.states = states;
-  start.r = fit.residuals(base, states);
-  start.cost = sum_squares(start.r);
-  progress(options, "state sensitivities");
+  progress(options, "fitting the swing states to the whole records");
+  Fitter plain(model, base, targets, BodyParameters{}, options.threads);
+  const FitPoint first = evaluate(plain, nullptr, Eigen::VectorXd(), states);
   const std::vector<Eigen::MatrixXd> none(static_cast<size_t>(H));
-  const FitOutcome o = fit_nonlinear(fit, nullptr, start, fit.state_jacobians(base, states, start.r), none, options);
-  b.states = o.at.states;
-  b.r = o.at.r;
-  b.rss = o.at.cost;
-  b.Js = fit.state_jacobians(base, b.states, b.r);
-  d.residual = b.rss;
+  const FitOutcome s = fit_nonlinear(plain, nullptr, first, plain.state_jacobians(base, states, first.r), none, options);
+  b.start = evaluate(fit, nullptr, Eigen::VectorXd::Zero(fit.body_size()), s.at.states);
+  b.Js = fit.state_jacobians(base, b.start.states, b.start.r);
+  progress(options, "fitting the body's mass properties with the swing states");
+  b.Jbody = fit.parameter_jacobians(nullptr, b.start.theta, b.start.states, b.start.r);
+  FitOutcome o = fit_nonlinear(fit, nullptr, b.start, b.Js, b.Jbody, options);
+  b.at = std::move(o.at);
+  b.schur_inverse = o.schur_inverse;
+  d.residual = b.at.data;
   d.samples = 0;
-  for (const auto& x : b.r) d.samples += static_cast<double>(x.size());
+  for (const auto& x : b.at.r) d.samples += static_cast<double>(x.size());
   d.independence = 0;
   for (const auto* t : targets) d.independence += t->band.independence() / static_cast<double>(targets.size());
-  d.noise_ratio = d.residual / d.samples;
-  b.dof = d.independence * (d.samples - 6.0 * H / d.independence);
+  d.noise_ratio = b.at.data / d.samples;
+  b.dof = d.independence * (d.samples - (6.0 * H + fit.body_size()) / d.independence);
   return b;
 }
 
@@ -392,57 +132,125 @@ std::vector<EffectCandidate> candidates_to_test(const ResponseModel& base, const
   return candidates;
 }
 
-// The candidate's fit from the baseline; one that explains a relevant share
-// is fitted again by continuation, the better fit kept.
-FitOutcome fit_candidate(Fitter& fit, const EffectCandidate& c, const Baseline& b, const DiagnosisOptions& options) {
-  FitPoint from;
-  from.theta = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(c.parameters.size()));
-  from.states = b.states;
-  from.r = b.r;
-  from.cost = b.rss;
-  FitOutcome o = fit_nonlinear(fit, &c, from, b.Js, fit.parameter_jacobians(c, from.theta, b.states, b.r), options);
-  const double direct = b.rss > 0 ? (b.rss - o.at.cost) / b.rss : 0.0;
+// The objective of two fits compared at one prior weight (the lower
+// misfit's: the priors weigh least where the data say most).
+bool better_fit(Fitter& fit, const FitPoint& a, const FitPoint& b) {
+  fit.set_misfit(std::min(fit.misfit_of(a.r), fit.misfit_of(b.r)));
+  return a.data + fit.prior_cost(a.theta) < b.data + fit.prior_cost(b.theta);
+}
+
+// The candidate's fit in two ways, the better kept:
+//  - direct: the body and the effect together from the baseline's start;
+//    one that explains a relevant share is fitted again by continuation;
+//  - staged: the effect with the body as the rig file gives it (`held`),
+//    then the body freed from there. An effect's parameter and the body's
+//    inertia can trade along a long valley (a carrying frame's rocking
+//    compliance against roll and pitch inertia) that the direct fit may not
+//    follow to its end; the staged fit starts at the body-held optimum, so
+//    its objective can only fall below it.
+struct CandidateFits {
+  FitOutcome joint;                // the body refitted with the effect: the ranking's
+  std::optional<FitOutcome> held;  // the body as the rig file gives it
+};
+
+CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c, const Baseline& b,
+                            const DiagnosisOptions& options) {
+  const int nb = fit.body_size(), n = fit.size(&c), p = n - nb;
+  FitPoint from = b.start;
+  from.theta = Eigen::VectorXd::Zero(n);
+  const auto Je = fit.parameter_jacobians(&c, from.theta, from.states, from.r, nb);
+  std::vector<Eigen::MatrixXd> Jt(b.Jbody.size());
+  for (size_t j = 0; j < Jt.size(); ++j) {
+    Jt[j].resize(Je[j].rows(), n);
+    Jt[j] << b.Jbody[j], Je[j];
+  }
+  FitOutcome o = fit_nonlinear(fit, &c, from, b.Js, Jt, options);
+  const double rss = b.at.data;
+  const double direct = rss > 0 ? (rss - o.at.data) / rss : 0.0;
   if (direct >= options.continuation_threshold && direct < options.continuation_ceiling) {
     try {
       FitOutcome oc = fit_by_continuation(fit, &c, b.initial_states, options);
       oc.first_predicted = o.first_predicted;
-      if (oc.at.cost < o.at.cost) o = std::move(oc);
+      if (better_fit(fit, oc.at, o.at)) o = std::move(oc);
     } catch (const std::exception& x) {
       o.note = std::string("the continuation fit failed: ") + x.what();
     }
     fit.set_horizon(INFINITY);
   }
-  return o;
+  if (nb == 0) return {o, std::nullopt};
+  FitPoint held_start = b.start;
+  held_start.theta = Eigen::VectorXd::Zero(p);
+  const FitOutcome h = fit_nonlinear(held, &c, held_start, b.Js, Je, options);
+  if (!(h.at.data < o.at.data + fit.prior_cost(o.at.theta))) return {o, h};  // the direct fit is already below it
+  try {
+    Eigen::VectorXd theta = Eigen::VectorXd::Zero(n);
+    theta.tail(p) = h.at.theta;
+    const FitPoint pt = evaluate(fit, &c, theta, h.at.states);
+    const ResponseModel m(fit.with_parameters(&c, theta));
+    FitOutcome s = fit_nonlinear(fit, &c, pt, fit.state_jacobians(m, pt.states, pt.r),
+                                 fit.parameter_jacobians(&c, theta, pt.states, pt.r), options);
+    s.first_predicted = o.first_predicted;
+    s.steps += h.steps;
+    if (better_fit(fit, s.at, o.at)) o = std::move(s);
+  } catch (const std::exception& x) {
+    o.note = std::string("the staged fit failed: ") + x.what();
+  }
+  return {o, h};
 }
 
-// The fitted parameters with their standard deviations from the last
-// linearization: the noise-weighted residual has unit variance per sample
-// at the noise, the band's samples are correlated (1 / independence), and a
-// misfit left over scales it up.
-std::vector<FittedParameter> fitted_parameters(const EffectCandidate& c, const FitOutcome& o, const Diagnosis& d) {
-  const int p = static_cast<int>(c.parameters.size());
+// Fitted values with their standard deviations from the last linearization
+// (parameters [first, first + specs.size()) of theta): the noise-weighted
+// residual has unit variance per sample at the noise, the band's samples are
+// correlated (1 / independence), and a misfit left over scales it up.
+std::vector<FittedParameter> fitted_values(const std::vector<CandidateParameter>& specs, int first,
+                                           const FitPoint& at, const Eigen::MatrixXd& schur_inverse, int fitted,
+                                           const Diagnosis& d) {
   const int H = static_cast<int>(d.baseline.size());
-  const double variance = std::max(1.0, o.at.cost / std::max(d.samples - 6.0 * H - p, 1.0)) / d.independence;
+  const double variance = std::max(1.0, at.data / std::max(d.samples - 6.0 * H - fitted, 1.0)) / d.independence;
   std::vector<FittedParameter> out;
-  for (int k = 0; k < p; ++k) {
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const int k = first + static_cast<int>(i);
     FittedParameter fp;
-    fp.name = c.parameters[k].name;
-    fp.unit = c.parameters[k].unit;
-    fp.value = o.at.theta(k);
-    fp.std = c.parameters[k].probe * std::sqrt(std::max(variance * o.schur_inverse(k, k), 0.0));
-    fp.low = c.parameters[k].low;
-    fp.high = c.parameters[k].high;
+    fp.name = specs[i].name;
+    fp.unit = specs[i].unit;
+    fp.value = at.theta(k);
+    fp.std = specs[i].probe * std::sqrt(std::max(variance * schur_inverse(k, k), 0.0));
+    fp.low = specs[i].low;
+    fp.high = specs[i].high;
     fp.plausible = fp.value >= fp.low - 3 * fp.std && fp.value <= fp.high + 3 * fp.std;
     out.push_back(fp);
   }
   return out;
 }
 
+std::vector<FittedParameter> body_values(const Fitter& fit, const FitPoint& at, const Eigen::MatrixXd& schur_inverse,
+                                         const Diagnosis& d) {
+  auto out = fitted_values(fit.body().parameters, 0, at, schur_inverse, static_cast<int>(at.theta.size()), d);
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i].prior_std = fit.body().sigma(static_cast<Eigen::Index>(i));
+    out[i].plausible = true;  // the body has no physical range here: see `off`
+    out[i].off = std::abs(out[i].value) > DiagnosisOptions::kOffSigmas * out[i].prior_std;
+  }
+  return out;
+}
+
 // The candidate's fit scored: share explained, F test, significance.
-EffectFit score(const EffectCandidate& c, const FitOutcome& o, const Baseline& b, const Diagnosis& d,
-                const DiagnosisOptions& options) {
-  const int p = static_cast<int>(c.parameters.size());
-  const double rss = b.rss, cost = o.at.cost;
+// Ranked by the joint fit (the body refitted); its values - the effect's
+// and the body's - are reported only where that fit reaches the noise
+// (`body_credible`). A fit left far above the noise is a stand-in for
+// physics the catalogue lacks (a frame's dynamics beyond its quasi-static
+// compliance): the body's offsets then absorb part of that model error
+// along the directions the data cannot separate from the effect (a CoG
+// height against a vertical compliance), and the effect's values go with
+// that wrong body. So there the values reported, and written to the
+// effects file, are those fitted with the body the rig file gives.
+EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits& fits, const Baseline& b,
+                const Diagnosis& d, const DiagnosisOptions& options) {
+  const FitOutcome& o = fits.joint;
+  const int p = static_cast<int>(c.parameters.size()), nb = fit.body_size();
+  // Scored on the data alone (the priors only keep the body where the data
+  // cannot fix it): the baseline's residual against the candidate's.
+  const double rss = b.at.data, cost = o.at.data;
   EffectFit ef;
   ef.effect = c.effect;
   ef.advice = c.advice;
@@ -452,17 +260,28 @@ EffectFit score(const EffectCandidate& c, const FitOutcome& o, const Baseline& b
   ef.residual = cost;
   ef.states = o.at.states;
   ef.explained_fraction = rss > 0 ? std::max(0.0, (rss - cost) / rss) : 0.0;
-  ef.parameters = fitted_parameters(c, o, d);
+  ef.parameters = fitted_values(c.parameters, nb, o.at, o.schur_inverse, nb + p, d);
   for (const auto& fp : ef.parameters) ef.plausible = ef.plausible && fp.plausible;
+  ef.body_credible = nb > 0 && cost <= (1.0 + options.noise_excess) * d.samples;
+  Eigen::VectorXd theta = o.at.theta.tail(p);
+  if (ef.body_credible) {
+    ef.body = body_values(fit, o.at, o.schur_inverse, d);
+  } else if (fits.held) {
+    ef.parameters = fitted_values(c.parameters, 0, fits.held->at, fits.held->schur_inverse, p, d);
+    for (const auto& fp : ef.parameters) ef.plausible = ef.plausible && fp.plausible;
+    theta = fits.held->at.theta;
+  }
   const double dof = b.dof - p;
   const double improvement = (rss - cost) * d.independence;
   ef.p_value = f_test_p_value(improvement, p, cost * d.independence, dof);
   ef.f_statistic = dof > 0 && cost > 0 ? (improvement / p) / (cost * d.independence / dof) : 0.0;
-  const double excess = std::max(rss - d.samples, 0.0);
+  const double excess = std::max(b.at.data - d.samples, 0.0);
+  // An implausible fit is never the missing effect: the catalogue's effect
+  // stretched beyond physics to mimic something else.
   ef.significant = d.noise_ratio > 1.0 + options.noise_excess && ef.p_value < options.significance &&
                    ef.explained_fraction >= options.min_explained &&
-                   (rss - cost) >= options.min_excess_share * excess;
-  if (c.make(o.at.theta)) ef.rig_block = c.rig_block(o.at.theta);  // none when the fit amounts to no effect
+                   (rss - cost) >= options.min_excess_share * excess && ef.plausible;
+  if (c.make(theta)) ef.rig_block = c.rig_block(theta);  // none when the fit amounts to no effect
   return ef;
 }
 
@@ -491,12 +310,27 @@ void rank(std::vector<EffectFit>& ranking, const Diagnosis& d, double dof_base) 
 }
 
 // The first significant effect, and the one-line verdict.
+std::string describe_off(const FittedParameter& p) {
+  const bool length = p.unit == "m";
+  const double k = length ? 1e3 : 1.0;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%s %+.4g %s (stated +-%.3g)", p.name.c_str(), k * p.value,
+                length ? "mm" : p.unit.c_str(), k * p.prior_std);
+  return buf;
+}
+
+// The first significant effect, the model's parameters that moved beyond
+// what the rig file states, and the one-line verdict.
 void conclude(Diagnosis& d, const DiagnosisOptions& options) {
   for (const auto& e : d.ranking) {
     if (e.significant) {
       d.missing_effect = e.effect;
+      d.body = e.body;
       break;
     }
+  }
+  for (const auto& p : d.body) {
+    if (p.off) d.parameters_off.push_back(p);
   }
   if (d.missing_effect) {
     d.summary = "missing effect: " + *d.missing_effect;
@@ -505,6 +339,12 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
                 "simulator's numerics)";
   } else {
     d.summary = "no significant missing effect: no effect of the catalogue explains the residual";
+  }
+  if (!d.parameters_off.empty()) {
+    d.summary += "; model parameter off:";
+    for (size_t i = 0; i < d.parameters_off.size(); ++i) {
+      d.summary += (i ? ", " : " ") + describe_off(d.parameters_off[i]);
+    }
   }
 }
 
@@ -523,12 +363,17 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     targets.push_back(&h.target);
     states.push_back(h.fit.state);
   }
-  Fitter fit(model, base, targets, options.threads);
-  const Baseline b = fit_baseline(fit, base, targets, states, options, d);
+  Fitter fit(model, base, targets, body_parameters(model), options.threads);
+  Fitter held(model, base, targets, BodyParameters{}, options.threads);
+  const Baseline b = fit_baseline(fit, model, base, targets, states, options, d);
+  if (b.at.data <= (1.0 + options.noise_excess) * d.samples) d.body = body_values(fit, b.at, b.schur_inverse, d);
   for (const auto& e : model.effects) d.present.push_back(e->name());
-  for (const EffectCandidate& c : candidates_to_test(base, d.present, options)) {
-    progress(options, "fitting " + c.effect);
-    d.ranking.push_back(score(c, fit_candidate(fit, c, b, options), b, d, options));
+  const std::vector<EffectCandidate> candidates = candidates_to_test(base, d.present, options);
+  for (size_t k = 0; k < candidates.size(); ++k) {
+    const EffectCandidate& c = candidates[k];
+    progress(options, "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " +
+                          std::to_string(candidates.size()) + ")");
+    d.ranking.push_back(score(fit, c, fit_candidate(fit, held, c, b, options), b, d, options));
   }
   rank(d.ranking, d, b.dof);
   conclude(d, options);

@@ -2,13 +2,13 @@
 // Which physical effect is the model missing? For every effect of the
 // catalogue (diagnose/effect_candidates.hpp) that the model does not contain,
 // its parameters are fitted to the measurements together with every
-// history's swing state, by Gauss-Newton on the noise-weighted swing-band
-// residuals (diagnose/history_comparison.hpp), sensitivities by finite differences of
-// simulations, steps taken on the nonlinear model (re-simulated, halved
-// until the residual falls; chord steps on one linearization, then a new
-// one while that gains). Each effect is then
-// scored by the share of the residual it explains, re-simulated, not
-// predicted by the linearization.
+// history's swing state and the body's CoG and inertia (with the priors the
+// rig file states, diagnose/body_parameters.hpp), by Gauss-Newton on the
+// noise-weighted swing-band residuals (diagnose/joint_fit.hpp). The baseline
+// is the same fit without an effect. Each effect is then scored by the share
+// of the objective it explains, re-simulated, not predicted by the
+// linearization. The body's fitted offsets beyond kOffSigmas of their
+// stated uncertainty are reported as "model parameter off".
 //
 // Significance: an effect is reported as significant only when all hold:
 //  - the model misses more than the noise: the baseline's noise-weighted
@@ -55,6 +55,10 @@ struct DiagnosisOptions {
   std::vector<std::string> effects;  // only these (empty: every effect the model lacks)
   int threads = 0;                // 0: the hardware's
   std::function<void(const std::string&)> progress;
+  // A fitted model parameter is "off" beyond this many of its stated
+  // standard deviations: 3 keeps a user's honest statement from being
+  // flagged in more than 0.3 % of the cases per parameter.
+  static constexpr double kOffSigmas = 3.0;
   void validate() const;          // std::invalid_argument naming the field
 };
 
@@ -63,6 +67,11 @@ struct FittedParameter {
   double value = 0, std = 0;
   double low = 0, high = 0;  // plausible range
   bool plausible = true;
+  // Model parameters (the body's): the offset from the rig file's value,
+  // the standard deviation the rig file states for it, and whether the
+  // offset lies beyond kOffSigmas of those: "model parameter off".
+  double prior_std = 0;
+  bool off = false;
 };
 
 struct EffectFit {
@@ -78,6 +87,12 @@ struct EffectFit {
   std::string advice;
   std::string note;                      // why a refinement stopped, if it did
   std::vector<SwingState> states;        // refitted swing states per history
+  // The body's offsets refitted with the effect; empty unless that fit
+  // reaches the noise (`body_credible`, see diagnosis.cpp's score): above
+  // it they measure the model's remaining error, not the body, and the
+  // effect's values are those fitted with the rig file's body.
+  std::vector<FittedParameter> body;
+  bool body_credible = false;
 };
 
 struct Diagnosis {
@@ -90,6 +105,10 @@ struct Diagnosis {
   std::vector<std::string> present;         // effects the model has (not tested)
   std::vector<EffectFit> ranking;           // best first
   std::optional<std::string> missing_effect;
+  // The body's offsets fitted with the missing effect (or, with none, with
+  // the model as it is), and those beyond what the rig file states; empty
+  // where that model stays far above the noise (EffectFit::body_credible).
+  std::vector<FittedParameter> body, parameters_off;
   std::string summary;                      // one line: the verdict
 };
 

@@ -64,8 +64,23 @@ struct Reader {
     return out;
   }
 
+  rig::BodyUncertainty body_uncertainty(const YAML::Node& b) const {
+    rig::BodyUncertainty u;
+    const YAML::Node n = b["uncertainty"];
+    if (!n) return u;
+    within("body.uncertainty", [&] {
+      ctx.expect_map(n, "uncertainty", {"cog", "inertia"});
+      if (n["cog"]) u.cog = ctx.vec3(n, "cog");
+      if (n["inertia"]) {
+        const auto J = ctx.numbers(n, "inertia", 6);
+        u.inertia = std::array<double, 6>{J[0], J[1], J[2], J[3], J[4], J[5]};
+      }
+    });
+    return u;
+  }
+
   fe::MassProperties body(const YAML::Node& b) const {
-    ctx.expect_map(b, "body", {"mass", "cog", "inertia", "name"});
+    ctx.expect_map(b, "body", {"mass", "cog", "inertia", "name", "uncertainty"});
     fe::MassProperties m;
     m.mass = ctx.number(b, "mass");
     m.cog = ctx.vec3(b, "cog");
@@ -305,13 +320,14 @@ rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& sou
     ctx.fail(root["geometry"]["rods"], "geometry.rods", "a rig has 3 or 4 rods (got " + std::to_string(r.rods) + ")");
   }
   model.body = r.within("body", [&] { return r.body(ctx.required(root, "body")); });
+  model.body_uncertainty = r.body_uncertainty(root["body"]);
   if (root["sensors"]) model.sensors = r.within("sensors", [&] { return r.sensors(root["sensors"]); });
   if (root["release"]) model.release = r.within("release", [&] { return r.release(root["release"]); });
   if (root["simulation"]) model.simulation = r.within("simulation", [&] { return r.simulation(root["simulation"]); });
   r.mass = model.body.mass;
   if (root["effects"]) r.effects(root["effects"], model);
   try {
-    model.validate();
+    model.validate_input();
   } catch (const std::invalid_argument& x) {
     const std::string msg = x.what();
     const auto colon = msg.find(':');

@@ -160,6 +160,18 @@ Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
   return j;
 }
 
+namespace {
+// The body's fitted offsets from the rig file's values, by parameter.
+Json body_offsets_json(const std::vector<diagnose::FittedParameter>& body) {
+  Json o = Json::object();
+  for (const auto& p : body) {
+    o[p.name] = {{"offset", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
+                 {"stated_std", finite_or_null(p.prior_std)}, {"off", p.off}};
+  }
+  return o;
+}
+}  // namespace
+
 Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   Json j;
   j["rig"] = x.rig;
@@ -169,6 +181,10 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   j["summary"] = d.summary;
   j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)}, {"band_samples", d.samples},
                    {"independent_share", finite_or_null(d.independence)}};
+  j["body"] = body_offsets_json(d.body);
+  Json off = Json::array();
+  for (const auto& p : d.parameters_off) off.push_back(p.name);
+  j["model_parameters_off"] = off;
   Json ranking = Json::array();
   for (const auto& e : d.ranking) {
     Json o;
@@ -182,6 +198,7 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
                         {"plausible_range", {finite_or_null(p.low), finite_or_null(p.high)}}, {"plausible", p.plausible}};
     }
     o["parameters"] = params;
+    o["body"] = body_offsets_json(e.body);
     o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
     o["f_statistic"] = finite_or_null(e.f_statistic);
     o["p_value"] = finite_or_null(e.p_value);

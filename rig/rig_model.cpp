@@ -34,6 +34,23 @@ std::array<double, 6> inertia_components(const Eigen::Matrix3d& J) {
   return {J(0, 0), J(1, 1), J(2, 2), J(0, 1), J(0, 2), J(1, 2)};
 }
 
+void RigModel::validate_input() const {
+  validate();
+  // A real body's principal moments obey the triangle inequality. Checked on
+  // input only: a fit's trial inertia may cross it by a probe (a thin disk
+  // lies on it), and the equations of motion hold for any positive definite
+  // tensor.
+  const Eigen::Vector3d p = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(body.inertia).eigenvalues();
+  require(p(0) + p(1) >= p(2) * (1 - 1e-9), "body.inertia",
+          "principal moments violate the triangle inequality (no mass distribution has them)");
+}
+
+std::array<double, 6> BodyUncertainty::inertia_std(const fe::MassProperties& body) const {
+  if (inertia) return *inertia;
+  const double s = kDefaultInertiaShare * body.inertia.trace() / 3.0;
+  return {s, s, s, s, s, s};
+}
+
 void SimulationOptions::validate() const {
   require(relative_tolerance > 0 && relative_tolerance < 1e-2, "simulation.relative_tolerance",
           "must lie in (0, 1e-2)");
@@ -71,9 +88,13 @@ void RigModel::validate() const {
   require(p.minCoeff() > 0, "body.inertia", "the inertia tensor must be positive definite (principal moments " +
                                                 std::to_string(p(0)) + ", " + std::to_string(p(1)) + ", " +
                                                 std::to_string(p(2)) + ")");
-  // A real body's principal moments obey the triangle inequality.
-  require(p(0) + p(1) >= p(2) * (1 - 1e-9), "body.inertia",
-          "principal moments violate the triangle inequality (no mass distribution has them)");
+  require(finite(body_uncertainty.cog) && body_uncertainty.cog.minCoeff() >= 0, "body.uncertainty.cog",
+          "standard deviations must be finite and >= 0");
+  if (body_uncertainty.inertia) {
+    for (double x : *body_uncertainty.inertia) {
+      require(std::isfinite(x) && x >= 0, "body.uncertainty.inertia", "standard deviations must be finite and >= 0");
+    }
+  }
   require(sensors.sample_rate_hz > 0, "sensors.sample_rate", "must be positive");
   require(sensors.force_noise_n >= 0 && sensors.angle_noise_rad >= 0 && sensors.force_resolution_n >= 0,
           "sensors", "noise and resolution must be >= 0");

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,12 +79,28 @@ struct SimulationOptions {
 
 class Effect;
 
+// How well the user knows the body's mass properties, one standard deviation
+// per component: the priors of diagnose's fits (diagnose/body_parameters.hpp),
+// which refit the CoG and the inertia with every candidate effect. A zero
+// holds the component as given. Defaults: what a user typically has - the
+// CoG from a static reference measurement (3 mm in plane, 7 mm in height)
+// and the inertia from a rigid identification on a rig that is not quite
+// rigid (10 % of the mean principal moment, products included).
+struct BodyUncertainty {
+  Vec3 cog{0.003, 0.003, 0.007};            // m
+  std::optional<std::array<double, 6>> inertia;  // kg m^2, Jxx Jyy Jzz Jxy Jxz Jyz; none: the default
+  static constexpr double kDefaultInertiaShare = 0.10;
+  // The inertia's standard deviations, the default resolved against `body`.
+  std::array<double, 6> inertia_std(const fe::MassProperties& body) const;
+};
+
 struct RigModel {
   std::string name;
   RigGeometry geometry;
   // Mass properties of what hangs from the rods: carrying frame + body (or
   // the carrying frame alone for a tare), about the CoG, in frame c.
   fe::MassProperties body;
+  BodyUncertainty body_uncertainty;
   SensorOptions sensors;
   ReleaseOptions release;
   SimulationOptions simulation;
@@ -91,6 +108,9 @@ struct RigModel {
 
   // Throws std::invalid_argument naming the offending field ("rods[2].encoder_axis").
   void validate() const;
+  // validate() and what only a user's input must satisfy besides (the
+  // body's principal moments obey the triangle inequality).
+  void validate_input() const;
   const Effect* effect(const std::string& name) const;  // nullptr if not switched on
 };
 

@@ -82,11 +82,14 @@ Outcome run_loop(const rig::RigModel& start, const std::vector<rig::Record>& dat
 }
 
 void print(const std::string& label, const Outcome& o) {
+  std::cout << "baseline res/n=" << o.diagnosis.noise_ratio << " indep=" << o.diagnosis.independence << "\n";
   std::cout << label << ": " << o.diagnosis.summary << "; force NRMSE " << o.force_before << " -> " << o.force_after
             << ", angle NRMSE " << o.angle_before << " -> " << o.angle_after << ", zG error " << 1e3 * o.zG_error
             << " mm\n";
   for (const auto& e : o.diagnosis.ranking) {
-    std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << "\n";
+    std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << " res/n=" << e.residual / o.diagnosis.samples << " body:";
+    for (const auto& b : e.body) std::cout << " " << b.value / b.prior_std;
+    std::cout << "\n";
   }
 }
 

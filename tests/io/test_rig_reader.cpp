@@ -2,6 +2,7 @@
 // issue 4 is refused with an InputError naming the file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <string>
 
@@ -205,6 +206,42 @@ TEST(RigReader, InertiaNoBodyCanHave) {
   const std::string bad = replace_first(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
                                   "inertia: [1, 1, 5, 0, 0, 0]");
   expect_error(bad, "inertia: [1, 1, 5, 0, 0, 0]", "body.inertia", "triangle inequality");
+}
+
+TEST(RigReader, BodyUncertaintyDefaultsToAStaticReferenceAndARigidIdentification) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", kValid);
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_EQ(m.body_uncertainty.cog, rig::Vec3(0.003, 0.003, 0.007));
+  EXPECT_FALSE(m.body_uncertainty.inertia.has_value());
+  // 10 % of the mean principal moment (6.25 + 6.25 + 12) / 3, products too.
+  for (double s : m.body_uncertainty.inertia_std(m.body)) EXPECT_DOUBLE_EQ(s, 0.1 * 24.5 / 3.0);
+}
+
+TEST(RigReader, ReadsTheBodyUncertainty) {
+  const std::string text = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+                                         "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
+                                         "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", text);
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_EQ(m.body_uncertainty.cog, rig::Vec3(0.001, 0.002, 0.0));
+  ASSERT_TRUE(m.body_uncertainty.inertia.has_value());
+  EXPECT_EQ(*m.body_uncertainty.inertia, (std::array<double, 6>{0.5, 0.6, 0.7, 0.0, 0.1, 0.2}));
+}
+
+TEST(RigReader, NegativeBodyUncertainty) {
+  const std::string bad = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+                                        "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
+                                        "  uncertainty: {cog: [0.001, -0.002, 0.004]}\n");
+  expect_error(bad, "uncertainty: {cog", "body.uncertainty.cog", ">= 0");
+}
+
+TEST(RigReader, UnknownKeyInTheBodyUncertainty) {
+  const std::string bad = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+                                        "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
+                                        "  uncertainty: {mass: 0.1}\n");
+  expect_error(bad, "uncertainty: {mass", "body.uncertainty.mass", "unknown key");
 }
 
 // --- keys and effects

@@ -1,0 +1,35 @@
+#pragma once
+// The body's mass properties as parameters of diagnose's fits. A user never
+// knows the body exactly (that is why it is measured): the CoG comes from a
+// static reference measurement, the inertia from a rigid identification.
+// Held fixed, their errors show as residuals that the catalogue's effects
+// then absorb (a CoG 5 mm too high swings like rods 5 mm too short), and the
+// ranking follows the parameters the user is least sure of, not the missing
+// physics. So every fit - the baseline and each candidate - refits them,
+// each offset from the rig file's value with the user's stated standard
+// deviation (rig::BodyUncertainty) as a Gaussian prior: a maximum a
+// posteriori fit in which the data decide wherever they can.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "rig/effect_kinds.hpp"
+#include "rig/rig_model.hpp"
+
+namespace rigflex::diagnose {
+
+struct BodyParameters {
+  // Of the nine (cog x y z, then Jxx Jyy Jzz Jxy Jxz Jyz), those with a
+  // standard deviation above zero, in that order.
+  std::vector<int> components;
+  std::vector<rig::FitParameter> parameters;  // name, unit, probe, plausible range (+-3 sigma)
+  Eigen::VectorXd sigma;                      // prior standard deviations
+  int size() const { return static_cast<int>(components.size()); }
+};
+
+BodyParameters body_parameters(const rig::RigModel& model);
+
+// The body with the offsets `delta` (one per fitted component) added.
+fe::MassProperties body_with(const fe::MassProperties& body, const BodyParameters& p, const Eigen::VectorXd& delta);
+
+}  // namespace rigflex::diagnose

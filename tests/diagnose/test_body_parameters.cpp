@@ -1,0 +1,71 @@
+// The body's mass properties as fit parameters (diagnose/body_parameters.hpp):
+// which components are fitted, their priors and probes, and that an offset
+// lands on the component it names.
+#include <gtest/gtest.h>
+
+#include "diagnose/body_parameters.hpp"
+#include "support/rig_cases.hpp"
+
+namespace rigflex {
+namespace {
+
+TEST(BodyParameters, AllNineWithTheRigFilesUncertainty) {
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3(0.001, 0.002, 0.004);
+  m.body_uncertainty.inertia = std::array<double, 6>{1, 2, 3, 4, 5, 6};
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  ASSERT_EQ(p.size(), 9);
+  const std::vector<std::string> names{"cog_x", "cog_y", "cog_z", "Jxx", "Jyy", "Jzz", "Jxy", "Jxz", "Jyz"};
+  const Eigen::VectorXd sigma = (Eigen::VectorXd(9) << 0.001, 0.002, 0.004, 1, 2, 3, 4, 5, 6).finished();
+  for (int k = 0; k < 9; ++k) {
+    EXPECT_EQ(p.components[k], k);
+    EXPECT_EQ(p.parameters[k].name, names[k]);
+    EXPECT_EQ(p.parameters[k].unit, k < 3 ? "m" : "kg m^2");
+    EXPECT_EQ(p.sigma(k), sigma(k));
+    // The plausible range is the prior's +-3 sigma; the probe lies well inside one sigma
+    // for the CoG (0.2 mm against 1 mm and more).
+    EXPECT_EQ(p.parameters[k].high, 3 * sigma(k));
+    EXPECT_EQ(p.parameters[k].low, -3 * sigma(k));
+    EXPECT_GT(p.parameters[k].probe, 0.0);
+  }
+  EXPECT_LT(p.parameters[0].probe, p.sigma(0));
+}
+
+TEST(BodyParameters, AZeroUncertaintyHoldsTheComponent) {
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3(0.003, 0.0, 0.007);
+  m.body_uncertainty.inertia = std::array<double, 6>{1, 1, 1, 0, 0, 0};
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  EXPECT_EQ(p.components, (std::vector<int>{0, 2, 3, 4, 5}));
+  // The offsets land on the components named: x and z of the CoG, the principal moments.
+  const Eigen::VectorXd delta = (Eigen::VectorXd(5) << 0.001, -0.002, 0.5, 0.25, -0.125).finished();
+  const fe::MassProperties b = diagnose::body_with(m.body, p, delta);
+  EXPECT_EQ(b.mass, m.body.mass);
+  EXPECT_DOUBLE_EQ(b.cog.x(), m.body.cog.x() + 0.001);
+  EXPECT_DOUBLE_EQ(b.cog.y(), m.body.cog.y());
+  EXPECT_DOUBLE_EQ(b.cog.z(), m.body.cog.z() - 0.002);
+  Eigen::Matrix3d dJ = Eigen::Matrix3d::Zero();
+  dJ.diagonal() << 0.5, 0.25, -0.125;
+  EXPECT_LT((b.inertia - m.body.inertia - dJ).norm(), 1e-12 * m.body.inertia.norm());
+}
+
+TEST(BodyParameters, ProductsOfInertiaGoOffTheDiagonalSymmetrically) {
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3::Zero();
+  m.body_uncertainty.inertia = std::array<double, 6>{0, 0, 0, 1, 1, 1};
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  ASSERT_EQ(p.components, (std::vector<int>{6, 7, 8}));
+  const fe::MassProperties b = diagnose::body_with(m.body, p, Eigen::Vector3d(0.1, 0.2, 0.3));
+  // [Jxx Jyy Jzz Jxy Jxz Jyz] as the rig file writes them: Jxy at (0, 1) and (1, 0), and so on.
+  const Eigen::Matrix3d dJ = b.inertia - m.body.inertia;
+  EXPECT_NEAR(dJ(0, 1), 0.1, 1e-12);
+  EXPECT_NEAR(dJ(1, 0), 0.1, 1e-12);
+  EXPECT_NEAR(dJ(0, 2), 0.2, 1e-12);
+  EXPECT_NEAR(dJ(2, 0), 0.2, 1e-12);
+  EXPECT_NEAR(dJ(1, 2), 0.3, 1e-12);
+  EXPECT_NEAR(dJ(2, 1), 0.3, 1e-12);
+  EXPECT_NEAR(dJ.diagonal().norm(), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace rigflex
