@@ -1,5 +1,5 @@
 // rigflex identify RIG.yaml DATA... [--algorithm rigid|flexible|both]
-//   [--reduced DIR]... [--static-cog X,Y[,Z]] [--tare FILE] [--reference FILE]
+//   [--effects FILE]... [--reduced DIR]... [--static-cog X,Y[,Z]] [--tare FILE] [--reference FILE]
 //   [--mass KG] [--window S] [--degree N] [--threads N] --out DIR:
 // mass properties from measured free swings, one least-squares solve per
 // measurement set, statistics over the sets, DIR/identification.json.
@@ -29,7 +29,7 @@ struct IdentifyArgs {
   std::string rig;
   std::vector<std::string> data;
   std::string algorithm = "rigid";
-  std::vector<std::string> reduced;
+  std::vector<std::string> effects, reduced;
   std::vector<double> static_cog;
   std::string tare, reference;
   double mass = 0;
@@ -111,6 +111,11 @@ int run(const IdentifyArgs& a) {
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "identify: frame reduction: %s\n", s.c_str()); };
   rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
+  // The effects files (as compare and diagnose take them, e.g. the ones
+  // diagnose wrote) extend the model the identification inverts: a frame's
+  // compliance, the rods' stiffness, a rod length or joint position error,
+  // a known encoder offset or load-cell gain.
+  for (const auto& f : a.effects) io::add_effects(model, f, ro);
   for (const auto& dir : a.reduced) use_reduced(model, dir);
   if (a.mass > 0) model.body.mass = a.mass;
   const identify::IdentificationOptions options = options_from(a);
@@ -140,8 +145,8 @@ int run(const IdentifyArgs& a) {
     if (alg == identify::IdentificationAlgorithm::flexible && !idr.flexible() && !a.quiet) {
       std::fprintf(stderr,
                    "identify: warning: the rig model has no flexible frame or rod (no fixed_frame_flexibility, "
-                   "carrying_frame_flexibility, rod_compliance, nor --reduced): the flexible algorithm equals the "
-                   "rigid one\n");
+                   "carrying_frame_flexibility, rod_compliance in the rig or --effects files, nor --reduced): the flexible "
+                   "algorithm equals the rigid one\n");
     }
     report.add(alg, identify_all(idr, data, options, a.threads, a.quiet));
   }
@@ -166,6 +171,8 @@ void add_identify_command(CLI::App& app, int& exit_code) {
       ->required();
   cmd->add_option("--algorithm", a->algorithm, "rigid, flexible or both")
       ->check(CLI::IsMember({"rigid", "flexible", "both"}));
+  cmd->add_option("--effects", a->effects,
+                  "YAML file with an `effects:` block added to the model first (as compare's; repeatable)");
   cmd->add_option("--reduced", a->reduced, "folder written by `rigflex reduce` (fixed or carrying frame)");
   cmd->add_option("--static-cog", a->static_cog, "CoG from the static procedure: X,Y (in plane) or X,Y,Z [m]")
       ->delimiter(',')

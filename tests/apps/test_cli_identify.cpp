@@ -81,6 +81,36 @@ TEST_F(CliIdentify, FlexibleAlgorithmConsumesTheReducedFilesAndFindsTheCogHeight
   EXPECT_GT(std::abs(j["algorithms"]["rigid"]["mean"]["cog"][2].get<double>() - kTrueZg), 0.020);
 }
 
+// The frame as an effects file (the form compare and diagnose take and
+// diagnose writes) instead of --reduced: the same CoG height as with the
+// frame in the rig file. A bad effects file stops with exit 2 naming it,
+// its line and key, and nothing is written.
+TEST_F(CliIdentify, EffectsFilesExtendTheModelTheIdentificationInverts) {
+  const TempDir out("rigflex-identify");
+  write_text(out.path() / "frame.yaml", "effects:\n  fixed_frame_flexibility:\n    reduced: " +
+                                            (dir_ / "reduced").string() + "\n");
+  const std::string base = "identify " + (dir_ / "rig.yaml").string() + " " + (dir_ / "meas").string() +
+                           " --quiet --algorithm flexible";
+  const CliRun r = run(base + " --effects " + (out.path() / "frame.yaml").string() + " --out " +
+                       (out.path() / "flex").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const double z = read_json(out.path() / "flex" / "identification.json")["mean"]["cog"][2].get<double>();
+  EXPECT_NEAR(z, kTrueZg, 0.002) << r.out;
+  // The same frame through --reduced gives the same model, so the same answer to round-off.
+  const CliRun same = run(base + " --reduced " + (dir_ / "reduced").string() + " --out " + (out.path() / "red").string());
+  ASSERT_EQ(same.code, 0) << same.out;
+  EXPECT_NEAR(read_json(out.path() / "red" / "identification.json")["mean"]["cog"][2].get<double>(), z, 1e-9);
+
+  write_text(out.path() / "bad.yaml", "effects:\n  rod_length_error: {delta: [0.001, 0, 0], colour: red}\n");
+  const CliRun bad = run(base + " --effects " + (out.path() / "bad.yaml").string() + " --out " +
+                         (out.path() / "bad").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find((out.path() / "bad.yaml").string() + ":2: key 'effects.rod_length_error.colour'"),
+            std::string::npos)
+      << bad.out;
+  EXPECT_FALSE(fs::exists(out.path() / "bad"));
+}
+
 TEST_F(CliIdentify, ReferenceAndTareGiveErrorsSharesAndTheBody) {
   const TempDir out("rigflex-identify");
   write_text(out.path() / "ref.yaml", "mass: 2914.0\ncog: [0.511, -0.008, -0.598]\ninertia: [1632, 5729, 5510, 44, -483, 4]\n");
