@@ -84,10 +84,11 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   } catch (const rig::RecordError& e) {
     rethrow_record_error(mm, e);
   }
-  std::printf("%-28s %10s %12s %11s %9s\n", "effect", "explained", "significant", "plausible", "p-value");
+  std::printf("%-28s %10s %12s %11s %9s %11s\n", "effect", "explained", "significant", "plausible", "p-value",
+              "vs first p");
   for (const auto& e : d.ranking) {
-    std::printf("%-28s %9.4f%% %12s %11s %9.2g\n", e.effect.c_str(), 100 * e.explained_fraction,
-                e.significant ? "yes" : "no", e.plausible ? "yes" : "no", e.p_value);
+    std::printf("%-28s %9.4f%% %12s %11s %9.2g %11.2g\n", e.effect.c_str(), 100 * e.explained_fraction,
+                e.significant ? "yes" : "no", e.plausible ? "yes" : "no", e.p_value, e.versus_first_p);
   }
   std::printf("%s (baseline residual %.2f x the noise)\n", d.summary.c_str(), d.noise_ratio);
   print_body(d);

@@ -4,9 +4,11 @@
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 
 #include "diagnose/effect_candidates.hpp"
+#include "diagnose/fit_discrimination.hpp"
 #include "diagnose/joint_fit.hpp"
 #include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
@@ -28,6 +30,7 @@ void DiagnosisOptions::validate() const {
     throw std::invalid_argument("min_excess_share: must lie in [0, 1]");
   }
   if (!(noise_excess >= 0)) throw std::invalid_argument("noise_excess: must be >= 0");
+  if (!(discrimination > 0 && discrimination < 1)) throw std::invalid_argument("discrimination: must lie in (0, 1)");
   for (const auto& e : effects) {
     if (!rig::find_effect_kind(e)) throw std::invalid_argument("effects: unknown effect '" + e + "'");
   }
@@ -254,6 +257,7 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
   EffectFit ef;
   ef.effect = c.effect;
   ef.advice = c.advice;
+  ef.evidence = c.evidence;
   ef.linear_explained_fraction = rss > 0 ? std::max(0.0, (rss - o.first_predicted) / rss) : 0.0;
   ef.refinements = o.steps;
   ef.note = o.note;
@@ -309,6 +313,28 @@ void rank(std::vector<EffectFit>& ranking, const Diagnosis& d, double dof_base) 
   }
 }
 
+// Each fit against the missing effect's (or the first-ranked's): Vuong's
+// test on their band residuals.
+void discriminate_against_first(Diagnosis& d, const std::map<std::string, Residuals>& residuals,
+                                const std::vector<const BandTarget*>& targets) {
+  if (d.ranking.size() < 2) return;
+  auto first = std::find_if(d.ranking.begin(), d.ranking.end(), [](const EffectFit& e) { return e.significant; });
+  if (first == d.ranking.end()) first = d.ranking.begin();
+  DiscriminationInput in;
+  in.first = &residuals.at(first->effect);
+  in.independence = d.independence;
+  for (size_t j = 0; j < targets.size(); ++j) {
+    in.rows.push_back((*in.first)[j].size() / std::max<Eigen::Index>(1, targets[j]->measured.cols()));
+  }
+  for (auto& e : d.ranking) {
+    if (e.effect == first->effect) continue;
+    in.second = &residuals.at(e.effect);
+    in.parameter_difference =
+        static_cast<double>(first->parameters.size()) - static_cast<double>(e.parameters.size());
+    e.versus_first_p = discriminate(in).p_value;
+  }
+}
+
 // The first significant effect, and the one-line verdict.
 std::string describe_off(const FittedParameter& p) {
   const bool length = p.unit == "m";
@@ -322,8 +348,10 @@ std::string describe_off(const FittedParameter& p) {
 // The first significant effect, the model's parameters that moved beyond
 // what the rig file states, and the one-line verdict.
 void conclude(Diagnosis& d, const DiagnosisOptions& options) {
+  const EffectFit* missing = nullptr;
   for (const auto& e : d.ranking) {
     if (e.significant) {
+      missing = &e;
       d.missing_effect = e.effect;
       d.body = e.body;
       break;
@@ -332,8 +360,24 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
   for (const auto& p : d.body) {
     if (p.off) d.parameters_off.push_back(p);
   }
+  std::vector<const EffectFit*> alike;
+  for (const auto& e : d.ranking) {
+    if (missing && &e != missing && e.significant && e.versus_first_p > options.discrimination) {
+      alike.push_back(&e);
+      d.indistinguishable.push_back(e.effect);
+    }
+  }
   if (d.missing_effect) {
     d.summary = "missing effect: " + *d.missing_effect;
+    if (!alike.empty()) {
+      d.summary += ", or";
+      for (size_t i = 0; i < alike.size(); ++i) d.summary += (i ? ", " : " ") + alike[i]->effect;
+      char p[64];
+      std::snprintf(p, sizeof p, "%.2g", alike.front()->versus_first_p);
+      d.summary += std::string(": the records cannot tell them apart (Vuong's test, p = ") + p +
+                   "); measurements that show each directly: " + missing->effect + ": " + missing->evidence;
+      for (const auto* e : alike) d.summary += "; " + e->effect + ": " + e->evidence;
+    }
   } else if (d.noise_ratio <= 1.0 + options.noise_excess) {
     d.summary = "no significant missing effect: the model matches the measurements to the noise (and the "
                 "simulator's numerics)";
@@ -369,13 +413,17 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   if (b.at.data <= (1.0 + options.noise_excess) * d.samples) d.body = body_values(fit, b.at, b.schur_inverse, d);
   for (const auto& e : model.effects) d.present.push_back(e->name());
   const std::vector<EffectCandidate> candidates = candidates_to_test(base, d.present, options);
+  std::map<std::string, Residuals> residuals;  // of the ranking's fits, for the look-alike test
   for (size_t k = 0; k < candidates.size(); ++k) {
     const EffectCandidate& c = candidates[k];
     progress(options, "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " +
                           std::to_string(candidates.size()) + ")");
-    d.ranking.push_back(score(fit, c, fit_candidate(fit, held, c, b, options), b, d, options));
+    const CandidateFits fits = fit_candidate(fit, held, c, b, options);
+    residuals[c.effect] = fits.joint.at.r;
+    d.ranking.push_back(score(fit, c, fits, b, d, options));
   }
   rank(d.ranking, d, b.dof);
+  discriminate_against_first(d, residuals, targets);
   conclude(d, options);
   return d;
 }

@@ -22,6 +22,10 @@
 // same (the richer one's extra improvement fails the F test at 1e-3), the
 // one with fewer parameters first (a rod length error also fits as a
 // vertical joint position error).
+// Look-alikes: every other significant effect is tested against the missing
+// one by Vuong's test for non-nested models (diagnose/fit_discrimination.hpp);
+// one the records cannot tell from it at `discrimination` is named beside
+// it, with the measurement that shows each directly.
 #include <Eigen/Core>
 #include <functional>
 #include <optional>
@@ -52,6 +56,9 @@ struct DiagnosisOptions {
   // rod length error of some micrometres. Above 4 x a model misses more than
   // a simulator's numerics can.
   double noise_excess = 3.0;
+  // Two significant effects are told apart when Vuong's test rejects "both
+  // fit equally well" at this level (two-sided); otherwise both are named.
+  double discrimination = 0.01;
   std::vector<std::string> effects;  // only these (empty: every effect the model lacks)
   int threads = 0;                // 0: the hardware's
   std::function<void(const std::string&)> progress;
@@ -85,6 +92,11 @@ struct EffectFit {
   int refinements = 0;
   std::string rig_block;                 // YAML under `effects:` with the fitted values; empty: no effect
   std::string advice;
+  std::string evidence;                  // a measurement that shows the effect directly
+  // Vuong's test of this fit against the missing effect's (the first-ranked
+  // effect's when none is): a p-value above DiagnosisOptions::discrimination
+  // says the records cannot tell the two apart.
+  double versus_first_p = 1;
   std::string note;                      // why a refinement stopped, if it did
   std::vector<SwingState> states;        // refitted swing states per history
   // The body's offsets refitted with the effect; empty unless that fit
@@ -105,6 +117,7 @@ struct Diagnosis {
   std::vector<std::string> present;         // effects the model has (not tested)
   std::vector<EffectFit> ranking;           // best first
   std::optional<std::string> missing_effect;
+  std::vector<std::string> indistinguishable;  // significant effects the records cannot tell from it
   // The body's offsets fitted with the missing effect (or, with none, with
   // the model as it is), and those beyond what the rig file states; empty
   // where that model stays far above the noise (EffectFit::body_credible).

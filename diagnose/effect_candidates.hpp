@@ -33,6 +33,7 @@ struct EffectCandidate {
   // values: the kind's parameters written by rig::effect_yaml.
   std::function<std::string(const Eigen::VectorXd&)> rig_block;
   std::string advice;                               // what to add to capture it properly
+  std::string evidence;                             // a measurement that shows it directly
 };
 
 // Every effect of the catalogue, in the spec's order.

@@ -178,6 +178,7 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   j["model"] = x.model_label;
   j["model_effects"] = d.present;
   j["missing_effect"] = d.missing_effect ? Json(*d.missing_effect) : Json(nullptr);
+  j["indistinguishable"] = d.indistinguishable;
   j["summary"] = d.summary;
   j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)}, {"band_samples", d.samples},
                    {"independent_share", finite_or_null(d.independence)}};
@@ -202,8 +203,10 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
     o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
     o["f_statistic"] = finite_or_null(e.f_statistic);
     o["p_value"] = finite_or_null(e.p_value);
+    o["versus_first_p"] = finite_or_null(e.versus_first_p);
     o["refinements"] = e.refinements;
     o["advice"] = e.advice;
+    o["evidence"] = e.evidence;
     o["rig_block"] = e.rig_block;
     if (!e.note.empty()) o["note"] = e.note;
     ranking.push_back(o);

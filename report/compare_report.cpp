@@ -382,6 +382,17 @@ void missing_effect_section(HtmlReport& r, const diagnose::Diagnosis& d) {
   if (e == d.ranking.end()) return;
   if (!e->plausible) r.paragraph("Warning: some fitted values lie outside their plausible range.");
   if (!e->advice.empty()) r.paragraph("To capture it properly: " + e->advice + ".");
+  if (!d.indistinguishable.empty()) {
+    std::string alike = "The records cannot tell it from " + joined(d.indistinguishable, "") +
+                        ". A measurement that shows it directly: " + e->evidence + ".";
+    for (const auto& x : d.ranking) {
+      if (std::find(d.indistinguishable.begin(), d.indistinguishable.end(), x.effect) == d.indistinguishable.end())
+        continue;
+      alike += "\n" + x.effect + ": " + x.evidence + " (Vuong's test against " + e->effect + ": p = " +
+               fmt("%.2g", x.versus_first_p) + ").";
+    }
+    r.paragraph(alike);
+  }
   if (!e->rig_block.empty())
     r.paragraph("The fitted effect, for the rig file under `effects:` (rigflex diagnose writes it as effects/" +
                 e->effect + ".yaml in its output folder, ready for `rigflex compare --effects`):\n" +

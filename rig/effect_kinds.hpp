@@ -87,6 +87,9 @@ struct EffectFitting {
   // The rig-file parameters that state the same effect.
   std::function<ParameterValue(const Eigen::VectorXd&)> write;
   std::string advice;  // what to add to the model to capture it properly
+  // A measurement that shows the effect directly: what separates it from
+  // an effect that fits the same swing records as well.
+  std::string evidence;
 };
 
 struct EffectKind {

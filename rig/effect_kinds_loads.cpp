@@ -59,6 +59,8 @@ EffectFitting fit_joint_friction(const FitContext& x) {
         .set("coulomb", ParameterValue::of(positive(p(1))));
   };
   f.advice = "add joint friction (effects.joint_friction), or service the Hooke's joints' bearings";
+  f.evidence = "records at two swing amplitudes: Coulomb friction takes the same amplitude per cycle, viscous "
+               "friction the same share, air drag a share that grows with the amplitude";
   return f;
 }
 
@@ -85,6 +87,8 @@ EffectFitting fit_air_drag(const FitContext& x) {
         .set("rotational", ParameterValue::of(positive(p(1))));
   };
   f.advice = "add air drag (effects.air_drag: the body's drag area), or shield the body from drafts";
+  f.evidence = "records at two swing amplitudes (drag takes a share per cycle that grows with the amplitude, "
+               "joint friction does not), or one with the body shielded from the air";
   return f;
 }
 

@@ -34,6 +34,7 @@ EffectFitting fit_encoder_offset(const FitContext& x) {
   };
   f.advice = "calibrate the encoders' zero with the rods hanging at rest and give the offsets "
              "(effects.encoder_offset)";
+  f.evidence = "a record at rest with the rods hanging still: an offset reads as a constant non-zero angle";
   return f;
 }
 
@@ -56,6 +57,7 @@ EffectFitting fit_load_cell_gain(const FitContext& x) {
     return ParameterValue::map().set("gain", ParameterValue::of(gain)).set("offset", ParameterValue::of(segment(p, n, n)));
   };
   f.advice = "calibrate the load cells against known weights and give gain and offset (effects.load_cell_gain)";
+  f.evidence = "a record with a known weight added: a gain error scales the load cells' change, an offset does not";
   return f;
 }
 

@@ -39,6 +39,8 @@ EffectFitting fit_rod_compliance(const FitContext& x) {
     return ParameterValue::map().set("stiffness", ParameterValue::of(1.0 / std::max(p(0), 1e-15)));
   };
   f.advice = "give the rods' axial stiffness (effects.rod_compliance: youngs_modulus and area, or stiffness)";
+  f.evidence = "a strain gauge on a rod, or records with a second, heavier body: the rods stretch in proportion "
+               "to their static load, the frames mostly sideways";
   return f;
 }
 
@@ -52,6 +54,7 @@ EffectFitting fit_rod_mass(const FitContext& x) {
   };
   f.write = [](const Eigen::VectorXd& p) { return ParameterValue::map().set("mass", ParameterValue::of(positive(p(0)))); };
   f.advice = "weigh a rod and give its mass (effects.rod_mass.mass)";
+  f.evidence = "weighing a rod";
   return f;
 }
 
@@ -65,6 +68,7 @@ EffectFitting fit_rod_length_error(const FitContext& x) {
   };
   f.write = [n](const Eigen::VectorXd& p) { return ParameterValue::map().set("delta", ParameterValue::of(segment(p, 0, n))); };
   f.advice = "measure the rods' joint-to-joint lengths and correct geometry.rods[*].length";
+  f.evidence = "the rods' joint-to-joint lengths measured";
   return f;
 }
 
@@ -88,6 +92,7 @@ EffectFitting fit_joint_position_error(const FitContext& x) {
     return ParameterValue::map().set("upper", ParameterValue::list(upper));
   };
   f.advice = "survey the joint centres and correct geometry.rods[*].upper and lower";
+  f.evidence = "a survey of the joint centres";
   return f;
 }
 

@@ -87,7 +87,7 @@ void print(const std::string& label, const Outcome& o) {
             << ", angle NRMSE " << o.angle_before << " -> " << o.angle_after << ", zG error " << 1e3 * o.zG_error
             << " mm\n";
   for (const auto& e : o.diagnosis.ranking) {
-    std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << " res/n=" << e.residual / o.diagnosis.samples << " body:";
+    std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << " vsfirst=" << e.versus_first_p << " res/n=" << e.residual / o.diagnosis.samples << " body:";
     for (const auto& b : e.body) std::cout << " " << b.value / b.prior_std;
     std::cout << "\n";
   }

@@ -9,28 +9,13 @@
 #include <string>
 
 #include "apps/cli_support.hpp"
+#include "apps/cli_trifilar.hpp"
 
 namespace {
 
 using namespace rigflex::test;
 
-const char* kRig = R"(name: cli-trifilar
-geometry:
-  gravity: 9.81
-  reference_point: [0.0, 0.0, 0.0]
-  rods:
-    - {upper: [0.477668, 0.147760, 1.0], lower: [0.477668, 0.147760, 0.0], length: 1.0, encoder_axis: [0.955336489, 0.295520207, 0.0]}
-    - {upper: [-0.366798, 0.339793, 1.0], lower: [-0.366798, 0.339793, 0.0], length: 1.0, encoder_axis: [-0.733596251, 0.679585565, 0.0]}
-    - {upper: [-0.110870, -0.487553, 1.0], lower: [-0.110870, -0.487553, 0.0], length: 1.0, encoder_axis: [-0.221740238, -0.975105772, 0.0]}
-body:
-  mass: 200.0
-  cog: [0.05, -0.03, -0.2]
-  inertia: [18, 18, 36, 0, 0, 0]
-sensors:
-  sample_rate: 500
-  load_cell: {noise: 1.0}
-  encoder: {noise: 2.0e-5}
-)";
+const std::string kRig = cli_trifilar_rig("cli-trifilar");
 
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);

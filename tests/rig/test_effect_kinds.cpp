@@ -128,6 +128,7 @@ TEST(EffectKinds, FitParametersHaveUnitsAndRanges) {
     const rig::EffectFitting f = k.fit(test::fit_context(m));
     ASSERT_FALSE(f.parameters.empty()) << k.name;
     EXPECT_FALSE(f.advice.empty()) << k.name;
+    EXPECT_FALSE(f.evidence.empty()) << k.name;
     for (const auto& p : f.parameters) {
       EXPECT_FALSE(p.unit.empty()) << k.name << "." << p.name;
       EXPECT_GT(p.probe, 0) << k.name << "." << p.name;
