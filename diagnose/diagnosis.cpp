@@ -313,13 +313,19 @@ void rank(std::vector<EffectFit>& ranking, const Diagnosis& d, double dof_base) 
   }
 }
 
+// The missing effect: the first significant one of the ranking.
+const EffectFit* first_significant(const std::vector<EffectFit>& ranking) {
+  const auto e = std::find_if(ranking.begin(), ranking.end(), [](const EffectFit& x) { return x.significant; });
+  return e == ranking.end() ? nullptr : &*e;
+}
+
 // Each fit against the missing effect's (or the first-ranked's): Vuong's
 // test on their band residuals.
 void discriminate_against_first(Diagnosis& d, const std::map<std::string, Residuals>& residuals,
                                 const std::vector<const BandTarget*>& targets) {
   if (d.ranking.size() < 2) return;
-  auto first = std::find_if(d.ranking.begin(), d.ranking.end(), [](const EffectFit& e) { return e.significant; });
-  if (first == d.ranking.end()) first = d.ranking.begin();
+  const EffectFit* significant = first_significant(d.ranking);
+  const EffectFit* first = significant ? significant : &d.ranking.front();
   DiscriminationInput in;
   in.first = &residuals.at(first->effect);
   in.independence = d.independence;
@@ -335,7 +341,7 @@ void discriminate_against_first(Diagnosis& d, const std::map<std::string, Residu
   }
 }
 
-// The first significant effect, and the one-line verdict.
+// A model parameter that is off, in words: name, offset, stated std.
 std::string describe_off(const FittedParameter& p) {
   const bool length = p.unit == "m";
   const double k = length ? 1e3 : 1.0;
@@ -348,14 +354,10 @@ std::string describe_off(const FittedParameter& p) {
 // The first significant effect, the model's parameters that moved beyond
 // what the rig file states, and the one-line verdict.
 void conclude(Diagnosis& d, const DiagnosisOptions& options) {
-  const EffectFit* missing = nullptr;
-  for (const auto& e : d.ranking) {
-    if (e.significant) {
-      missing = &e;
-      d.missing_effect = e.effect;
-      d.body = e.body;
-      break;
-    }
+  const EffectFit* missing = first_significant(d.ranking);
+  if (missing) {
+    d.missing_effect = missing->effect;
+    d.body = missing->body;
   }
   for (const auto& p : d.body) {
     if (p.off) d.parameters_off.push_back(p);
@@ -418,9 +420,9 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     const EffectCandidate& c = candidates[k];
     progress(options, "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " +
                           std::to_string(candidates.size()) + ")");
-    const CandidateFits fits = fit_candidate(fit, held, c, b, options);
-    residuals[c.effect] = fits.joint.at.r;
+    CandidateFits fits = fit_candidate(fit, held, c, b, options);
     d.ranking.push_back(score(fit, c, fits, b, d, options));
+    residuals[c.effect] = std::move(fits.joint.at.r);
   }
   rank(d.ranking, d, b.dof);
   discriminate_against_first(d, residuals, targets);
