@@ -8,6 +8,7 @@ CandidateContext candidate_context(const rig::RigSystem& rig, double lowest_swin
   CandidateContext c;
   c.geometry = rig.assembly().geometry;
   c.rods = rig.rods();
+  c.rod_stiffness = rig.assembly().rod_stiffness;
   c.suspended_mass = rig.suspended_mass();
   c.body_mass = rig.assembly().body.mass;
   c.weight_per_rod = rig.suspended_weight() / c.rods;

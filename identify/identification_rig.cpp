@@ -53,6 +53,7 @@ IdentificationRig identification_rig(const rig::RigModel& model, IdentificationA
   a.geometry = model.geometry;
   a.body = model.body;
   a.rod_mass.assign(model.geometry.rods.size(), 0.0);
+  a.rod_stiffness = model.rods.stiffness;
   for (const auto& e : model.effects) e->build(a);
 
   IdentificationRig rig;

@@ -26,6 +26,7 @@ struct Reader {
   std::filesystem::path base;
   int rods = 0;
   double mass = 0;  // the body's, for the joints of a frame given by its joint compliance
+  const rig::RigGeometry* geometry_ = nullptr;  // the rods' lengths, for EA/L
 
   // Runs `read` with the keys of its errors named under `path`: "upper" read
   // for rod 2 is reported as "geometry.rods[2].upper". Errors about other
@@ -87,6 +88,30 @@ struct Reader {
     const auto J = ctx.numbers(b, "inertia", 6);
     m.inertia = rig::inertia_tensor({J[0], J[1], J[2], J[3], J[4], J[5]});
     return m;
+  }
+
+  // One value for every rod or a list of one per rod.
+  std::vector<double> per_rod(const YAML::Node& map, const std::string& key) const {
+    if (map[key].IsSequence()) return ctx.numbers(map, key, static_cast<size_t>(rods));
+    return std::vector<double>(static_cast<size_t>(rods), ctx.number(map, key));
+  }
+
+  rig::RodProperties rod_properties(const YAML::Node& n) const {
+    ctx.expect_map(n, "rods", {"stiffness", "youngs_modulus", "area", "damping"});
+    rig::RodProperties p;
+    const bool by_material = n["youngs_modulus"] || n["area"];
+    if (n["stiffness"] && by_material) {
+      ctx.fail(n["youngs_modulus"] ? n["youngs_modulus"] : n["area"], "rods",
+               "give either 'stiffness' (N/m) or 'youngs_modulus' and 'area' (EA/L), not both");
+    }
+    if (n["stiffness"]) p.stiffness = per_rod(n, "stiffness");
+    if (by_material) {
+      const double E = ctx.number(n, "youngs_modulus");
+      const std::vector<double> A = per_rod(n, "area");
+      for (int i = 0; i < rods; ++i) p.stiffness.push_back(E * A[static_cast<size_t>(i)] / geometry_->rods[static_cast<size_t>(i)].length);
+    }
+    if (n["damping"]) p.damping = per_rod(n, "damping");
+    return p;
   }
 
   rig::SensorOptions sensors(const YAML::Node& s) const {
@@ -306,7 +331,7 @@ rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& sou
   Reader r{YamlContext(source), base};
   const YamlContext& ctx = r.ctx;
   if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
-  ctx.expect_map(root, "rig", {"name", "geometry", "body", "sensors", "release", "simulation", "effects"});
+  ctx.expect_map(root, "rig", {"name", "geometry", "body", "rods", "sensors", "release", "simulation", "effects"});
   rig::RigModel model;
   if (root["name"]) {
     model.name = ctx.text(root, "name");
@@ -321,6 +346,8 @@ rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& sou
   }
   model.body = r.within("body", [&] { return r.body(ctx.required(root, "body")); });
   model.body_uncertainty = r.body_uncertainty(root["body"]);
+  r.geometry_ = &model.geometry;
+  if (root["rods"]) model.rods = r.within("rods", [&] { return r.rod_properties(root["rods"]); });
   if (root["sensors"]) model.sensors = r.within("sensors", [&] { return r.sensors(root["sensors"]); });
   if (root["release"]) model.release = r.within("release", [&] { return r.release(root["release"]); });
   if (root["simulation"]) model.simulation = r.within("simulation", [&] { return r.simulation(root["simulation"]); });
@@ -368,6 +395,10 @@ InputError no_equilibrium_error(const std::filesystem::path& file, const rig::Ri
                  "error?)";
         break;
       }
+    }
+    if (key == "geometry" && !model.rods.stiffness.empty()) {
+      key = "rods.stiffness";
+      advice = "with these rods the rig holds the body nowhere near the nominal pose (too soft?)";
     }
   }
   int line = 0;

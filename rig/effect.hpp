@@ -36,6 +36,7 @@ struct RigAssembly {
   RigGeometry geometry;                 // truth (geometry errors applied)
   fe::MassProperties body;
   std::vector<double> rod_stiffness;    // N/m; empty: rods rigid (see rig_system.hpp)
+  std::vector<double> rod_damping;      // N s/m; empty: none
   std::vector<double> rod_mass;         // kg per rod
   std::optional<FixedFrameModel> fixed_frame;
   std::optional<CarryingFrameModel> carrying_frame;

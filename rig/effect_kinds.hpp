@@ -67,6 +67,7 @@ struct FitContext {
   double swing_omega = 0;      // rad/s, lowest swing mode
   double joint_radius = 0;     // RMS distance of the lower joints from their centroid, m
   int rods = 0;
+  std::vector<double> rod_stiffness;  // N/m per rod as assembled (the rig file's rods block); empty: rigid
 };
 
 struct FitParameter {

@@ -1,5 +1,7 @@
 // Effects on the rig's structure (the build hook) other than the frames:
 // the rods' stiffness and mass, and errors of the geometry block.
+#include <algorithm>
+
 #include "rig/effect_kind_entries.hpp"
 #include "rig/effects.hpp"
 
@@ -22,21 +24,33 @@ std::shared_ptr<const Effect> parse_rod_compliance(const ParameterValue& e, cons
   return std::make_shared<RodCompliance>(k);
 }
 
-// One axial compliance for all rods.
+// One axial compliance for all rods, in series with the rods' nominal
+// stiffness where the rig file gives one (rods.stiffness): zero is the model
+// as it is. Not below it: the chain of rod, joints and load cell is never
+// stiffer than the rod's EA/L.
 EffectFitting fit_rod_compliance(const FitContext& x) {
   const FitScales s = fit_scales(x);
   const int n = s.n;
   const double c_probe = s.c_probe;
+  std::vector<double> nominal(static_cast<size_t>(n), 0.0);  // m/N, 0: rigid
+  for (size_t i = 0; i < x.rod_stiffness.size() && i < nominal.size(); ++i) nominal[i] = 1.0 / x.rod_stiffness[i];
+  const auto stiffness = [nominal](double added) {
+    std::vector<double> k;
+    for (double c : nominal) k.push_back(1.0 / (c + std::max(added, 0.0)));
+    return k;
+  };
   EffectFitting f;
   f.parameters = {{"axial_compliance", "m/N", c_probe, 0, s.c_high, true}};
-  // Below 1 % of the probe (5 um under the static load) the rods are as
-  // stiff as the rigid rods' realization: no effect.
-  f.make = [n, c_probe](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+  // Below 1 % of the probe (5 um under the static load) the rods are as the
+  // model has them (rigid or nominal): no effect.
+  f.make = [c_probe, stiffness](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
     if (p(0) < 1e-2 * c_probe) return nullptr;
-    return std::make_shared<RodCompliance>(std::vector<double>(n, 1.0 / p(0)));
+    return std::make_shared<RodCompliance>(stiffness(p(0)));
   };
-  f.write = [](const Eigen::VectorXd& p) {
-    return ParameterValue::map().set("stiffness", ParameterValue::of(1.0 / std::max(p(0), 1e-15)));
+  f.write = [stiffness](const Eigen::VectorXd& p) {
+    const std::vector<double> k = stiffness(std::max(p(0), 1e-15));
+    const bool same = std::all_of(k.begin(), k.end(), [&](double v) { return v == k.front(); });
+    return ParameterValue::map().set("stiffness", same ? ParameterValue::of(k.front()) : ParameterValue::of(k));
   };
   f.advice = "give the rods' axial stiffness (effects.rod_compliance: youngs_modulus and area, or stiffness)";
   f.evidence = "a strain gauge on a rod, or records with a second, heavier body: the rods stretch in proportion "
@@ -102,7 +116,7 @@ EffectKind rod_compliance() {
   EffectKind k;
   k.name = "rod_compliance";
   k.hook = EffectHook::build;
-  k.equations = "each rod an axial spring between its joints (without it the rods are rigid)";
+  k.equations = "each rod an axial spring between its joints, replacing `rods.stiffness` (without either the rods are rigid)";
   k.signature = "bounce mode at sqrt(sum k / m) / 2 pi (vertical rods)";
   k.parameters = {
       {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "", "axial stiffness (or `youngs_modulus` and `area`)"},
@@ -110,7 +124,7 @@ EffectKind rod_compliance() {
       {"area", ParameterShape::per_rod, "m^2", 0, inf, true, "", "the rods' cross-section"},
   };
   k.parse = parse_rod_compliance;
-  k.fitted_through = "one axial compliance for all rods";
+  k.fitted_through = "one axial compliance for all rods, in series with the nominal `rods.stiffness`";
   k.fit = fit_rod_compliance;
   return k;
 }

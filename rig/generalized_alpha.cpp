@@ -132,11 +132,15 @@ void GeneralizedAlpha::refresh_tangents(const Configuration& c, const Eigen::Vec
     s(j) = 0.0;
   }
   K_ = (0.5 * (K_ + K_.transpose())).eval();
-  // Without dissipative effects (friction, drag) the damping is linear and C
+  // Without dissipative effects (friction, drag) or rod dampers (c u u',
+  // turning with the rods like their stiffness) the damping is linear and C
   // stays as built (the gyroscopic terms it leaves out weigh ~1e-4 of M in
   // the iteration matrix at swing speeds).
   const auto& effects = rig_.model().effects;
-  if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return e->dissipative(); })) return;
+  if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return e->dissipative(); }) &&
+      rig_.rod_damping().isZero(0.0)) {
+    return;
+  }
   C_ = damping_tangent(rig_, c, v);
 }
 

@@ -77,6 +77,16 @@ struct SimulationOptions {
   void validate() const;              // std::invalid_argument
 };
 
+// The rods' own axial properties, what every rig has and its drawings give
+// (the rig file's `rods` block): a spring between the joint centres and a
+// dashpot beside it. Nominal values, not effects: diagnose refits a rod
+// compliance on top of them (rig/effect_kinds_structure.cpp) and the
+// rod_compliance effect, where present, replaces the stiffness.
+struct RodProperties {
+  std::vector<double> stiffness;  // N/m per rod; empty: rigid (rig/rig_system.hpp)
+  std::vector<double> damping;    // N s/m per rod, on the rate of stretch; empty: none
+};
+
 class Effect;
 
 // How well the user knows the body's mass properties, one standard deviation
@@ -101,6 +111,7 @@ struct RigModel {
   // the carrying frame alone for a tare), about the CoG, in frame c.
   fe::MassProperties body;
   BodyUncertainty body_uncertainty;
+  RodProperties rods;
   SensorOptions sensors;
   ReleaseOptions release;
   SimulationOptions simulation;

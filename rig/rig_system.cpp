@@ -42,6 +42,8 @@ RigSystem::RigSystem(const RigModel& model, double scale_fixed, double scale_rod
   assembly_.body = model_.body;
   n_ = model_.geometry.rod_count();
   assembly_.rod_mass.assign(n_, 0.0);
+  assembly_.rod_stiffness = model_.rods.stiffness;
+  assembly_.rod_damping = model_.rods.damping;
   assembly_.stiffness_scale_fixed = scale_fixed;
   assembly_.stiffness_scale_rods = scale_rods;
   assembly_.stiffness_scale_carrying = scale_carrying;
@@ -84,7 +86,9 @@ void RigSystem::build() {
 
   rods_rigid_ = a.rod_stiffness.empty();
   k_.resize(n_);
+  c_ = Eigen::VectorXd::Zero(n_);
   for (int i = 0; i < n_; ++i) {
+    if (!a.rod_damping.empty()) c_(i) = a.rod_damping[i];
     if (rods_rigid_) {
       const double w = 2.0 * std::numbers::pi * kRigidRodHz;
       k_(i) = m * w * w / n_;
@@ -205,7 +209,7 @@ void RigSystem::kinematics(const Configuration& c, const Velocity& v, double t, 
     rk.u = d / rk.length;
     const Vec3 dv = rk.vB - rk.vA;
     rk.u_rate = (dv - rk.u * rk.u.dot(dv)) / rk.length;
-    rk.force = k_(i) * (rk.length - L_(i));
+    rk.force = k_(i) * (rk.length - L_(i)) + c_(i) * rk.u.dot(dv);
   }
 }
 

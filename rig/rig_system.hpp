@@ -77,6 +77,7 @@ class RigSystem {
   int state_size() const { return 13 + 2 * (ne_ + nf_); }
   bool rods_rigid() const { return rods_rigid_; }
   const Eigen::VectorXd& rod_stiffness() const { return k_; }
+  const Eigen::VectorXd& rod_damping() const { return c_; }  // N s/m, zeros: none
   const Eigen::Matrix<double, 6, 6>& body_mass() const { return Mb_; }
   double suspended_mass() const { return Mb_(0, 0); }
   Vec3 gravity_vector() const { return Vec3(0, 0, -assembly_.geometry.gravity); }
@@ -132,7 +133,7 @@ class RigSystem {
   RigAssembly assembly_;
   int n_ = 0, ne_ = 0, nf_ = 0;
   bool rods_rigid_ = true;
-  Eigen::VectorXd k_, L_, rod_mass_;
+  Eigen::VectorXd k_, c_, L_, rod_mass_;
   Eigen::Matrix<double, 6, 6> Mb_;
   Eigen::LLT<Eigen::Matrix<double, 6, 6>> Mb_llt_;
   Eigen::LLT<Eigen::MatrixXd> Mf_llt_;

@@ -244,6 +244,67 @@ TEST(RigReader, UnknownKeyInTheBodyUncertainty) {
   expect_error(bad, "uncertainty: {mass", "body.uncertainty.mass", "unknown key");
 }
 
+// --- the rods block: nominal axial stiffness and damping, plain keys
+
+std::string with_rods(const std::string& block) { return replace_first(kValid, "sensors:\n", block + "sensors:\n"); }
+
+TEST(RigReader, RodsAreRigidAndUndampedWithoutTheBlock) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", kValid);
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_TRUE(m.rods.stiffness.empty());
+  EXPECT_TRUE(m.rods.damping.empty());
+}
+
+TEST(RigReader, ReadsTheRodsStiffnessAndDampingOnePerRodOrOneForAll) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", with_rods("rods:\n  stiffness: [2.0e7, 2.1e7, 1.9e7]\n  damping: 300\n"));
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_EQ(m.rods.stiffness, (std::vector<double>{2.0e7, 2.1e7, 1.9e7}));
+  EXPECT_EQ(m.rods.damping, (std::vector<double>{300.0, 300.0, 300.0}));
+}
+
+TEST(RigReader, RodsStiffnessFromYoungsModulusAndArea) {
+  // EA / L with L = 1 m for every rod of kValid.
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", with_rods("rods: {youngs_modulus: 2.1e11, area: [1e-4, 2e-4, 1e-4]}\n"));
+  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  EXPECT_EQ(m.rods.stiffness, (std::vector<double>{2.1e7, 4.2e7, 2.1e7}));
+}
+
+TEST(RigReader, RodsStiffnessGivenTwoWaysIsRefused) {
+  const std::string bad = with_rods("rods:\n  stiffness: 2.0e7\n  youngs_modulus: 2.1e11\n  area: 1e-4\n");
+  expect_error(bad, "  youngs_modulus", "rods", "not both");
+}
+
+TEST(RigReader, RodsStiffnessWithAnotherRodCount) {
+  expect_error(with_rods("rods:\n  stiffness: [2.0e7, 2.0e7]\n"), "  stiffness", "rods.stiffness", "3");
+}
+
+TEST(RigReader, RodsStiffnessMustBePositive) {
+  expect_error(with_rods("rods:\n  stiffness: [2.0e7, 0, 2.0e7]\n"), "  stiffness", "rods.stiffness", "positive");
+}
+
+TEST(RigReader, RodsDampingMustNotBeNegative) {
+  expect_error(with_rods("rods:\n  damping: -1\n"), "  damping", "rods.damping", ">= 0");
+}
+
+TEST(RigReader, UnknownKeyInTheRodsBlock) {
+  expect_error(with_rods("rods:\n  colour: 3\n"), "  colour", "rods.colour", "unknown key");
+}
+
+TEST(RigReader, RodsTooSoftToHoldTheBodyNameTheirStiffness) {
+  // What the commands report when no equilibrium is found with these rods.
+  const test::TempDir dir("rigflex-rig-reader");
+  const std::string text = with_rods("rods:\n  stiffness: 10\n");
+  const auto file = dir.path() / "rig.yaml";
+  test::write_text(file, text);
+  const io::InputError e = io::no_equilibrium_error(file, io::read_rig(file), "no static equilibrium");
+  EXPECT_EQ(e.key(), "rods.stiffness");
+  EXPECT_EQ(e.line(), line_of(text, "  stiffness: 10"));
+  EXPECT_NE(e.reason().find("too soft"), std::string::npos) << e.what();
+}
+
 // --- keys and effects
 
 TEST(RigReader, UnknownTopLevelKey) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "rig/effect_kinds.hpp"
+#include "rig/rig_system.hpp"
 #include "support/effect_actions.hpp"
 #include "support/rig_cases.hpp"
 
@@ -153,6 +154,28 @@ TEST(EffectKinds, ParseOfWriteIsTheFittedEffect) {
     EXPECT_NO_THROW(parsed->validate(m.geometry.rod_count())) << k.name;
     test::expect_same_action(*made, *parsed, m, 1e-12);
   }
+}
+
+// With the rig file's nominal rods the fitted compliance adds to theirs in
+// series: zero is the model as it is, and the file diagnose writes gives
+// the total; parse(write(x)) still the fitted effect.
+TEST(EffectKinds, RodComplianceAddsToTheNominalRods) {
+  rig::RigModel m = test::multifilar_rig();
+  m.rods.stiffness = {2.0e6, 4.0e6, 1.0e6};
+  const rig::EffectKind* k = rig::find_effect_kind("rod_compliance");
+  ASSERT_TRUE(k);
+  const rig::EffectFitting f = k->fit(test::fit_context(m));
+  EXPECT_EQ(f.make(Eigen::VectorXd::Zero(1)), nullptr);
+  const double added = 5e-7;  // m/N
+  const auto made = f.make(Eigen::VectorXd::Constant(1, added));
+  ASSERT_TRUE(made);
+  rig::RigModel with = m;
+  with.effects.push_back(made);
+  const Eigen::VectorXd got = rig::RigSystem(with).rod_stiffness();
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(got(i), 1.0 / (1.0 / m.rods.stiffness[i] + added), 1e-9 * got(i)) << i;
+  const auto parsed = k->parse(f.write(Eigen::VectorXd::Constant(1, added)), parse_context(*k, m));
+  ASSERT_TRUE(parsed);
+  test::expect_same_action(*made, *parsed, m, 1e-12);
 }
 
 // The writer's text, as diagnose has always written it: one line when every

@@ -113,6 +113,7 @@ inline rig::FitContext fit_context(const rig::RigModel& m) {
   c.rod_length = 1.0;
   c.swing_omega = 2.0 * 3.141592653589793 * 0.5;
   c.joint_radius = 0.4;
+  c.rod_stiffness = m.rods.stiffness;
   return c;
 }
 
