@@ -157,6 +157,7 @@ int main(int argc, char** argv) {
         const std::string n = e->name();
         return n == "fixed_frame_flexibility" || n == "carrying_frame_flexibility" || n == "rod_compliance";
       });
+      model.rods.stiffness.clear();  // rigid rods too
     }
     const rig::RigSystem rig(model);
     rig::MeasurementOptions mo;

@@ -1,13 +1,13 @@
-// Issue 6's acceptance: for every effect of the catalogue, data simulated
-// with it (sensor noise on, random pushes), the starting model without it:
-// diagnose ranks it first; the fitted effect added to the model, the
-// swing-band force NRMSE falls at least 5x (the angles' for an effect that
-// shows far more in the angles) and the identified CoG height is within
-// 2 mm of the truth. Control data (nothing hidden): nothing significant.
-// Two effects at once: both in the top three. Real data's defects: a record
-// that starts mid-swing, another sample rate, a dropped sample, twice the
-// noise. The rig: a trifilar of 200 kg on 1 m rods (tests/rig), fast enough
-// to run the whole catalogue.
+// Issue 6's acceptance, with the body as the truth has it: control data
+// (nothing hidden: nothing significant, also on data from the other
+// integrator), two effects at once (both in the top three), and real data's
+// defects (a record that starts mid-swing, another sample rate, a dropped
+// sample, twice the noise: the hidden effect still found), and the carrying
+// frame's flexibility. Every other catalogue effect alone is tested from
+// the body a user really has, a harder start, in
+// tests/acceptance/test_uncertain_body.cpp. The rig: a trifilar of 200 kg on
+// 1 m rods (tests/support/rig_cases.hpp), fast enough to run the whole
+// catalogue.
 //
 // Magnitudes: each hidden effect is large enough that the starting model's
 // force (angle) NRMSE is well above the noise's floor in the swing band
@@ -26,6 +26,7 @@
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
 #include "diagnose/model_comparison.hpp"
+#include "support/diagnosis_cases.hpp"
 #include "support/rig_cases.hpp"
 
 namespace {
@@ -93,53 +94,15 @@ void print(const std::string& label, const Outcome& o) {
   }
 }
 
+// With the body known exactly: the one catalogue effect that the user's
+// model of the body (tests/acceptance/test_uncertain_body.cpp) does not
+// find yet, the carrying frame's flexibility (docs/compare.md, Limits).
 class HiddenEffect : public ::testing::TestWithParam<int> {};
-
-std::shared_ptr<const rig::Effect> hidden_effect(int which, const rig::RigModel& start) {
-  switch (which) {
-    case 0: {
-      rig::FixedJointCompliance c;
-      // 2-6 mm sideways and 1-2 mm down under a rod's 654 N.
-      c.joints = {rig::Vec3(3e-6, 9e-6, 1.5e-6), rig::Vec3(6e-6, 3e-6, 1.5e-6), rig::Vec3(3e-6, 6e-6, 3e-6)};
-      c.sway = Eigen::Vector2d(3e-6, 1.5e-6);
-      return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(start.geometry, 200.0, c));
-    }
-    case 1: {
-      rig::CarryingJointCompliance c;
-      c.translation = rig::Vec3(3e-6, 2e-6, 1e-6);
-      c.rocking = Eigen::Vector2d(4e-6, 2e-6);
-      return std::make_shared<rig::CarryingFrameFlexibility>(
-          rig::joint_compliance_carrying_frame(start.geometry, 200.0, c));
-    }
-    case 2:  // 2.6 mm stretch under 654 N: a long wire rope
-      return std::make_shared<rig::RodCompliance>(std::vector<double>{2.5e5, 2.5e5, 2.5e5});
-    case 3: return std::make_shared<rig::RodMass>(std::vector<double>{3.0, 3.0, 3.0});
-    case 4: {
-      rig::JointFrictionParameters f;
-      f.viscous = 0.3;
-      f.coulomb = 0.05;
-      return std::make_shared<rig::JointFriction>(f);
-    }
-    case 5:  // a light, bulky body: 10 m^2 of drag area on 200 kg
-      return std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 10.0, 30.0, std::nullopt});
-    case 6:
-      return std::make_shared<rig::EncoderOffset>(std::vector<double>{0.002, -0.001, 0.0},
-                                                  std::vector<double>{0.0, 0.001, -0.002});
-    case 7: return std::make_shared<rig::RodLengthError>(std::vector<double>{0.003, -0.002, 0.0});
-    case 8:
-      return std::make_shared<rig::JointPositionError>(
-          std::vector<rig::Vec3>{rig::Vec3(0.003, 0, 0), rig::Vec3(0, -0.003, 0.001), rig::Vec3(0.002, 0.002, 0)},
-          std::vector<rig::Vec3>(3, rig::Vec3::Zero()));
-    default:
-      return std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.02},
-                                                 std::vector<double>{5.0, 0.0, -5.0});
-  }
-}
 
 TEST_P(HiddenEffect, RankedFirstAndTheErrorFalls) {
   const rig::RigModel start = start_model();
   rig::RigModel truth = start;
-  truth.effects.push_back(hidden_effect(GetParam(), start));
+  truth.effects.push_back(test::hidden_effect(GetParam(), start));
   const std::string name = truth.effects.back()->name();
   const Outcome o = run_loop(start, measure(truth, 100 + GetParam()), start.body.cog.z());
   print(name, o);
@@ -147,20 +110,11 @@ TEST_P(HiddenEffect, RankedFirstAndTheErrorFalls) {
   EXPECT_EQ(o.diagnosis.ranking.front().effect, name);
   ASSERT_TRUE(o.diagnosis.missing_effect.has_value());
   EXPECT_EQ(*o.diagnosis.missing_effect, name);
-  // The 5x fall is asked of the force channels; an effect that shows far
-  // more in the angles than in the forces (encoder offsets change no force;
-  // drag damps the swing, which the forces show only at second order) is
-  // held to it in the angles, and its forces must not get worse.
-  if (o.force_before >= o.angle_before) {
-    EXPECT_GE(o.force_before / o.force_after, 5.0);
-  } else {
-    EXPECT_GE(o.angle_before / o.angle_after, 5.0);
-    EXPECT_LE(o.force_after, o.force_before);
-  }
+  EXPECT_GE(o.force_before / o.force_after, 5.0);
   EXPECT_LE(std::abs(o.zG_error), 0.002);
 }
 
-INSTANTIATE_TEST_SUITE_P(Catalogue, HiddenEffect, ::testing::Range(0, 10));
+INSTANTIATE_TEST_SUITE_P(BodyKnown, HiddenEffect, ::testing::Values(1));  // carrying_frame_flexibility
 
 // Control data: the starting model itself, two seeds, and once integrated
 // by CVODE's BDF instead of generalized-alpha (another simulator, as
@@ -181,8 +135,8 @@ TEST(DiagnosisAcceptance, ControlDataBlamesNothing) {
 TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
   const rig::RigModel start = start_model();
   rig::RigModel truth = start;
-  truth.effects.push_back(hidden_effect(7, start));  // rod length error
-  truth.effects.push_back(hidden_effect(9, start));  // load cell gain
+  truth.effects.push_back(test::hidden_effect(7, start));  // rod length error
+  truth.effects.push_back(test::hidden_effect(9, start));  // load cell gain
   const auto data = measure(truth, 300);
   const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
   std::vector<std::string> top;
@@ -200,7 +154,7 @@ enum class Defect { mid_swing, sample_rate, dropped_sample, double_noise };
 std::vector<rig::Record> defective(Defect d) {
   const rig::RigModel start = start_model();
   rig::RigModel truth = start;
-  truth.effects.push_back(hidden_effect(7, start));
+  truth.effects.push_back(test::hidden_effect(7, start));
   if (d == Defect::sample_rate) truth.sensors.sample_rate_hz = 487.0;
   if (d == Defect::double_noise) {
     truth.sensors.force_noise_n *= 2;

@@ -1,19 +1,17 @@
-// Issue 17's starting point: the model a user really has. The body's CoG
-// comes from a static reference measurement (drawn within +-3, +-3, +-7 mm
-// of the truth), its inertia from rigflex's rigid identification of the
-// same records, the rods nominal. Data simulated with an effect hidden (or
-// none, for the control), sensor noise on. diagnose must name the hidden
-// effect (nothing on the control) though the body is off: the body's CoG
-// and inertia are refitted in every fit, with the default uncertainty
-// (rig::BodyUncertainty) as their prior. Adding what it found - the effect
-// and the body's fitted offsets - the force NRMSE falls at least 5x, and
-// both the fitted CoG height and the flexible identification's with the
-// effect added lie within 2 mm of the truth.
-//
-// The effects chosen are the ones a held CoG height mimics best: rod
-// compliance and a rod length error lower the body as a higher CoG would
-// raise it; fixed-frame flexibility is the effect that was named on clean
-// controls before the body was fitted.
+// Issue 17's acceptance, one seed per case (bench/bench_diagnosis_seeds runs
+// many): the model a user really has. The body's CoG comes from a static
+// reference measurement (drawn within +-3, +-3, +-7 mm of the truth), its
+// inertia from rigflex's rigid identification of the same records (a CAD
+// estimate within 10 % where the records do not determine it), the rods
+// nominal (tests/support/diagnosis_cases.hpp). Data simulated with one
+// catalogue effect hidden, or nothing, or an effect below the noise (the
+// controls), sensor noise on. diagnose must name the hidden effect (nothing
+// on the controls) though the body is off: the body's CoG and inertia are
+// refitted in every fit, with the default uncertainty (rig::BodyUncertainty)
+// as their prior. Adding what it found - the effect and the body's fitted
+// offsets - the force NRMSE (the angles' for an effect that shows far more
+// there) falls at least 5x, and both the fitted CoG height and the flexible
+// identification's with the effect added lie within 2 mm of the truth.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -30,60 +28,26 @@
 #include "io/rig_reader.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
+#include "support/diagnosis_cases.hpp"
 #include "support/rig_cases.hpp"
 
 namespace {
 
 using namespace rigflex;
 
-std::vector<const rig::Record*> pointers(const std::vector<rig::Record>& r) {
-  std::vector<const rig::Record*> p;
-  for (const auto& x : r) p.push_back(&x);
-  return p;
-}
-
-// The user's model: the truth's geometry, the CoG off by a draw within the
-// static reference's accuracy, the inertia as the rigid identification
-// gives it from the records.
-rig::RigModel users_model(const rig::RigModel& nominal, const std::vector<rig::Record>& data, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  rig::RigModel m = nominal;
-  m.body.cog += rig::Vec3(0.003 * u(rng), 0.003 * u(rng), 0.007 * u(rng));
-  const identify::IdentificationRig idr = identify::identification_rig(nominal, identify::IdentificationAlgorithm::rigid);
-  const identify::IdentificationResult r = identify::identify(idr, pointers(data), {});
-  EXPECT_TRUE(r.observable) << r.message;
-  if (r.observable) m.body.inertia = r.properties.inertia;
-  return m;
-}
-
-std::vector<rig::Record> measure(const rig::RigModel& truth, std::uint64_t seed) {
-  rig::MeasurementOptions o;
-  o.histories = 6;
-  o.seed = seed;
-  return rig::simulate_measurement(rig::RigSystem(truth), o).front();
-}
-
-std::shared_ptr<const rig::Effect> hidden(const std::string& name, const rig::RigModel& start) {
-  if (name == "rod_compliance") return std::make_shared<rig::RodCompliance>(std::vector<double>{2.5e5, 2.5e5, 2.5e5});
-  if (name == "rod_length_error") return std::make_shared<rig::RodLengthError>(std::vector<double>{0.003, -0.002, 0.0});
-  rig::FixedJointCompliance c;  // 2-6 mm sideways and 1-2 mm down under a rod's 654 N
-  c.joints = {rig::Vec3(3e-6, 9e-6, 1.5e-6), rig::Vec3(6e-6, 3e-6, 1.5e-6), rig::Vec3(3e-6, 6e-6, 3e-6)};
-  c.sway = Eigen::Vector2d(3e-6, 1.5e-6);
-  return std::make_shared<rig::FixedFrameFlexibility>(rig::joint_compliance_fixed_frame(start.geometry, 200.0, c));
-}
+using test::record_pointers;
 
 class UncertainBody : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
   const rig::RigModel nominal = test::noisy_trifilar();
   rig::RigModel truth = nominal;
-  const bool control = GetParam() == "none";
-  if (!control) truth.effects.push_back(hidden(GetParam(), nominal));
-  const std::uint64_t seed = 700 + std::hash<std::string>{}(GetParam()) % 100;
-  const auto data = measure(truth, seed);
-  const rig::RigModel start = users_model(nominal, data, seed);
-  const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
+  const bool control = test::control_case(GetParam());
+  for (auto& e : test::case_effects(GetParam(), nominal)) truth.effects.push_back(e);
+  const std::uint64_t seed = test::acceptance_seed(GetParam());
+  const auto data = test::measure_histories(truth, seed);
+  const rig::RigModel start = test::users_model(nominal, data, seed);
+  const diagnose::Diagnosis d = diagnose::diagnose(start, record_pointers(data), {}, {});
   std::cout << GetParam() << ": start CoG off by " << 1e3 * (start.body.cog - truth.body.cog).transpose()
             << " mm; " << d.summary << " (" << d.noise_ratio << " x noise)\n";
   for (const auto& e : d.ranking) {
@@ -118,12 +82,20 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
   io::add_effects(fitted, file);
   std::filesystem::remove(file);
   ASSERT_EQ(fitted.effects.size(), 1u);
-  const auto before = diagnose::compare_model(diagnose::ResponseModel(start), pointers(data), {}, {});
-  const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), pointers(data), {}, {});
+  const auto before = diagnose::compare_model(diagnose::ResponseModel(start), record_pointers(data), {}, {});
+  const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), record_pointers(data), {}, {});
   std::cout << "   force NRMSE " << before.force_nrmse << " -> " << after.force_nrmse << "; CoG height error "
             << 1e3 * (start.body.cog.z() - truth.body.cog.z()) << " -> "
             << 1e3 * (fitted.body.cog.z() - truth.body.cog.z()) << " mm\n";
-  EXPECT_GE(before.force_nrmse / after.force_nrmse, 5.0);
+  // The 5x fall in the forces, or in the angles for an effect that shows
+  // far more there (as tests/acceptance/test_diagnosis_acceptance.cpp).
+  if (before.force_nrmse >= before.angle_nrmse) {
+    EXPECT_GE(before.force_nrmse / after.force_nrmse, 5.0);
+  } else {
+    std::cout << "   angle NRMSE " << before.angle_nrmse << " -> " << after.angle_nrmse << "\n";
+    EXPECT_GE(before.angle_nrmse / after.angle_nrmse, 5.0);
+    EXPECT_LE(after.force_nrmse, before.force_nrmse);
+  }
   EXPECT_LE(std::abs(fitted.body.cog.z() - truth.body.cog.z()), 0.002);
   // And the flexible identification with the effect added finds the CoG height too.
   ASSERT_TRUE(after.identified.has_value()) << after.identification_error;
@@ -133,6 +105,14 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealisticStart, UncertainBody,
-                         ::testing::Values("none", "rod_compliance", "rod_length_error", "fixed_frame_flexibility"));
+                         ::testing::Values("none", "below_noise", "rod_compliance", "rod_length_error", "fixed_frame_flexibility",
+                                           "rod_mass", "joint_friction", "air_drag", "encoder_offset",
+                                           "joint_position_error", "load_cell_gain"));
+// Not here: carrying_frame_flexibility. From this start its fit stops at
+// 20 x the noise, short of the truth's, and the fixed frame's (at 4 x) is
+// named - also with twice the fit's iteration budget: a local minimum, not
+// a budget (docs/compare.md, Limits). With the body known it is found
+// (HiddenEffect in tests/acceptance/test_diagnosis_acceptance.cpp), and
+// bench_diagnosis_seeds keeps measuring it from this start.
 
 }  // namespace

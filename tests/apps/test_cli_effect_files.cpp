@@ -60,7 +60,9 @@ TEST_P(CliEffectFiles, CompareRunsOnEveryFileDiagnoseWrote) {
   const fs::path here = *dir_ / v.name;
   fs::create_directories(here);
   const fs::path rig = here / "rig.yaml", fitted = here / "fitted.yaml";
-  const std::string rods = v.compliant_rods ? "effects:\n  rod_compliance: {stiffness: 1.0e8}\n" : "";
+  // Compliant rods as a rig has them, nominal (the rods block): diagnose
+  // then fits a rod compliance on top of them too.
+  const std::string rods = v.compliant_rods ? "rods: {stiffness: 1.0e8}\n" : "";
   std::ofstream(fitted) << kRig << rods;
   std::ofstream(rig) << kRig << "simulation: {method: " << v.method << "}\n" << rods;
   const bool bdf = std::string(v.method) == "bdf";
@@ -80,7 +82,7 @@ TEST_P(CliEffectFiles, CompareRunsOnEveryFileDiagnoseWrote) {
     EXPECT_TRUE(std::isfinite(j["force_nrmse"].get<double>())) << entry.path();
     ++files;
   }
-  // The catalogue has ten effects (nine the compliant model lacks); a fit
+  // The catalogue has ten effects, all candidates with either rods; a fit
   // that amounts to no effect (a compliance clamped at zero) writes none.
   EXPECT_GE(files, 5) << d.out;
 }

@@ -26,7 +26,7 @@ constexpr double kTrueZg = -0.598;  // examples/large-rig/rig.yaml body.cog z
 std::string rig_without_fixed_frame() {
   const std::string text = read_text(kLargeRig + "/rig.yaml");
   const auto begin = text.find("  fixed_frame_flexibility:");
-  const auto end = text.find("  rod_compliance:");
+  const auto end = text.find("  rod_mass:");
   return text.substr(0, begin) + text.substr(end);
 }
 
