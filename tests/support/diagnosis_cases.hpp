@@ -79,16 +79,16 @@ inline std::shared_ptr<const rig::Effect> hidden_effect(const std::string& name,
 }
 
 // The effects hidden in a case: a catalogue kind's name (above), "none",
-// "below_noise" (air drag on 1/500 of the hidden case's area with 1/150 of
-// its rotational drag: from the hidden case's residuals, 13000 and 5700 x
-// the noise, and the residual's square law, about 0.05 + 0.25 x the noise
-// in excess - below it, so nothing may be named) or "two_effects" (a rod
+// "below_noise" (air drag on 1/1000 of the hidden case's area with 1/400 of
+// its rotational drag: 1/3 of a drag that left 0.5-5 x the noise in excess
+// over seeds - the pushes' size sets it - so about 0.05-0.6 x by the
+// residual's square law: below the noise, nothing may be named) or "two_effects" (a rod
 // length error and load-cell gains at once). Throws std::invalid_argument
 // for another name.
 inline std::vector<std::shared_ptr<const rig::Effect>> case_effects(const std::string& name,
                                                                     const rig::RigModel& nominal) {
   if (name == "none") return {};
-  if (name == "below_noise") return {std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 0.02, 0.2, std::nullopt})};
+  if (name == "below_noise") return {std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 0.01, 0.07, std::nullopt})};
   if (name == "two_effects") return {hidden_effect(7, nominal), hidden_effect(9, nominal)};
   auto e = hidden_effect(name, nominal);
   if (!e) throw std::invalid_argument("no diagnosis case " + name);
