@@ -25,18 +25,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "bench_cli.hpp"
-#include "diagnose/body_parameters.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/model_comparison.hpp"
-#include "io/effects_file.hpp"
-#include "io/rig_reader.hpp"
 #include "support/diagnosis_cases.hpp"
 #include "support/rig_cases.hpp"
 
@@ -93,27 +88,6 @@ struct Row {
   std::string misses;  // what was named where the hidden effect was not
 };
 
-// The first-ranked effect's rig block and the body's fitted offsets added to `start`.
-rig::RigModel with_found(const rig::RigModel& start, const diagnose::EffectFit& top) {
-  rig::RigModel m = start;
-  if (top.body_credible && !top.body.empty()) {
-    const diagnose::BodyParameters bp = diagnose::body_parameters(start);
-    Eigen::VectorXd delta(bp.size());
-    for (int k = 0; k < bp.size(); ++k) delta(k) = top.body[static_cast<size_t>(k)].value;
-    m.body = diagnose::body_with(start.body, bp, delta);
-  }
-  if (!top.rig_block.empty()) {  // as a user adds it: the effects file through the reader
-    const std::filesystem::path file = std::filesystem::temp_directory_path() / ("rigflex-bench-seeds-" + top.effect + ".yaml");
-    {
-      std::ofstream out(file);
-      out << io::effects_file_text({}, top.rig_block);
-    }
-    io::add_effects(m, file);
-    std::filesystem::remove(file);
-  }
-  return m;
-}
-
 void run_case(const std::string& name, const Options& o, Row& row) {
   const rig::RigModel nominal = test::noisy_trifilar();
   rig::RigModel truth = nominal;
@@ -135,7 +109,9 @@ void run_case(const std::string& name, const Options& o, Row& row) {
       ok = !d.missing_effect;
     } else if (name == "two_effects") {
       int found = 0;
-      for (const auto& e : d.ranking) found += e.significant && (e.effect == "rod_length_error" || e.effect == "load_cell_gain");
+      for (const auto& e : d.ranking) {
+        found += e.significant && (e.effect == "rod_length_error" || e.effect == "load_cell_gain");
+      }
       ok = found == 2;
     } else {
       ok = d.missing_effect && *d.missing_effect == name;
@@ -143,7 +119,7 @@ void run_case(const std::string& name, const Options& o, Row& row) {
     row.named += ok;
     if (!ok) row.misses += (row.misses.empty() ? "" : "; ") + d.missing_effect.value_or("none");
     if (control || d.ranking.empty()) continue;
-    const rig::RigModel fitted = with_found(start, d.ranking.front());
+    const rig::RigModel fitted = test::with_found(start, d.ranking.front());
     const auto before = diagnose::compare_model(diagnose::ResponseModel(start), test::record_pointers(data), {}, {});
     const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), test::record_pointers(data), {}, {});
     const double fall = before.force_nrmse >= before.angle_nrmse ? before.force_nrmse / after.force_nrmse
@@ -196,7 +172,8 @@ int main(int argc, char** argv) {
       std::snprintf(id, sizeof id, "%.2f", 1e3 * row.worst_zg_id);
     }
     std::printf("| %s | %d of %d | %s | %s | %s | %.3g | %.0f | %s |\n", name.c_str(), row.named, row.runs, fall, fit,
-                id, row.noise_ratio, row.seconds / std::max(row.runs, 1), row.misses.empty() ? "-" : row.misses.c_str());
+                id, row.noise_ratio, row.seconds / std::max(row.runs, 1),
+                row.misses.empty() ? "-" : row.misses.c_str());
     std::fflush(stdout);
   }
   return 0;

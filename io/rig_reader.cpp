@@ -26,7 +26,6 @@ struct Reader {
   std::filesystem::path base;
   int rods = 0;
   double mass = 0;  // the body's, for the joints of a frame given by its joint compliance
-  const rig::RigGeometry* geometry_ = nullptr;  // the rods' lengths, for EA/L
 
   // Runs `read` with the keys of its errors named under `path`: "upper" read
   // for rod 2 is reported as "geometry.rods[2].upper". Errors about other
@@ -96,7 +95,8 @@ struct Reader {
     return std::vector<double>(static_cast<size_t>(rods), ctx.number(map, key));
   }
 
-  rig::RodProperties rod_properties(const YAML::Node& n) const {
+  // `geometry`: the rods' lengths, for EA/L.
+  rig::RodProperties rod_properties(const YAML::Node& n, const rig::RigGeometry& geometry) const {
     ctx.expect_map(n, "rods", {"stiffness", "youngs_modulus", "area", "damping"});
     rig::RodProperties p;
     const bool by_material = n["youngs_modulus"] || n["area"];
@@ -108,7 +108,9 @@ struct Reader {
     if (by_material) {
       const double E = ctx.number(n, "youngs_modulus");
       const std::vector<double> A = per_rod(n, "area");
-      for (int i = 0; i < rods; ++i) p.stiffness.push_back(E * A[static_cast<size_t>(i)] / geometry_->rods[static_cast<size_t>(i)].length);
+      for (int i = 0; i < rods; ++i) {
+        p.stiffness.push_back(E * A[static_cast<size_t>(i)] / geometry.rods[static_cast<size_t>(i)].length);
+      }
     }
     if (n["damping"]) p.damping = per_rod(n, "damping");
     return p;
@@ -346,8 +348,7 @@ rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& sou
   }
   model.body = r.within("body", [&] { return r.body(ctx.required(root, "body")); });
   model.body_uncertainty = r.body_uncertainty(root["body"]);
-  r.geometry_ = &model.geometry;
-  if (root["rods"]) model.rods = r.within("rods", [&] { return r.rod_properties(root["rods"]); });
+  if (root["rods"]) model.rods = r.within("rods", [&] { return r.rod_properties(root["rods"], model.geometry); });
   if (root["sensors"]) model.sensors = r.within("sensors", [&] { return r.sensors(root["sensors"]); });
   if (root["release"]) model.release = r.within("release", [&] { return r.release(root["release"]); });
   if (root["simulation"]) model.simulation = r.within("simulation", [&] { return r.simulation(root["simulation"]); });

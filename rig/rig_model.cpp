@@ -95,13 +95,17 @@ void RigModel::validate() const {
       require(std::isfinite(x) && x >= 0, "body.uncertainty.inertia", "standard deviations must be finite and >= 0");
     }
   }
-  for (const auto* list : {&rods.stiffness, &rods.damping}) {
-    const bool k = list == &rods.stiffness;
-    const std::string at = k ? "rods.stiffness" : "rods.damping";
-    require(list->empty() || static_cast<int>(list->size()) == n, at,
-            "needs one value per rod (" + std::to_string(n) + "), got " + std::to_string(list->size()));
-    for (double x : *list) require(std::isfinite(x) && (k ? x > 0 : x >= 0), at, k ? "must be positive" : "must be >= 0");
-  }
+  // Empty, or one finite value per rod, positive or (`zero_allowed`) >= 0.
+  const auto per_rod = [n](const std::vector<double>& v, const std::string& at, bool zero_allowed) {
+    require(v.empty() || static_cast<int>(v.size()) == n, at,
+            "needs one value per rod (" + std::to_string(n) + "), got " + std::to_string(v.size()));
+    for (double x : v) {
+      require(std::isfinite(x) && (zero_allowed ? x >= 0 : x > 0), at,
+              zero_allowed ? "must be >= 0" : "must be positive");
+    }
+  };
+  per_rod(rods.stiffness, "rods.stiffness", false);
+  per_rod(rods.damping, "rods.damping", true);
   require(sensors.sample_rate_hz > 0, "sensors.sample_rate", "must be positive");
   require(sensors.force_noise_n >= 0 && sensors.angle_noise_rad >= 0 && sensors.force_resolution_n >= 0,
           "sensors", "noise and resolution must be >= 0");

@@ -35,18 +35,7 @@ using namespace rigflex;
 
 rig::RigModel start_model() { return test::noisy_trifilar(); }
 
-std::vector<rig::Record> measure(const rig::RigModel& truth, std::uint64_t seed) {
-  rig::MeasurementOptions o;
-  o.histories = 6;
-  o.seed = seed;
-  return rig::simulate_measurement(rig::RigSystem(truth), o).front();
-}
-
-std::vector<const rig::Record*> pointers(const std::vector<rig::Record>& r) {
-  std::vector<const rig::Record*> p;
-  for (const auto& x : r) p.push_back(&x);
-  return p;
-}
+using test::record_pointers;
 
 struct Outcome {
   diagnose::Diagnosis diagnosis;
@@ -58,8 +47,9 @@ struct Outcome {
 // rig reader (as a user does with diagnose's effects file), compare again.
 Outcome run_loop(const rig::RigModel& start, const std::vector<rig::Record>& data, double true_zG) {
   Outcome o;
-  o.diagnosis = diagnose::diagnose(start, pointers(data), {}, {});
-  const diagnose::ModelComparison before = diagnose::compare_model(diagnose::ResponseModel(start), pointers(data), {}, {});
+  o.diagnosis = diagnose::diagnose(start, record_pointers(data), {}, {});
+  const diagnose::ModelComparison before =
+      diagnose::compare_model(diagnose::ResponseModel(start), record_pointers(data), {}, {});
   o.force_before = before.force_nrmse;
   o.angle_before = before.angle_nrmse;
   if (o.diagnosis.ranking.empty()) return o;
@@ -74,7 +64,8 @@ Outcome run_loop(const rig::RigModel& start, const std::vector<rig::Record>& dat
   rig::RigModel fitted = start;
   io::add_effects(fitted, file);
   std::filesystem::remove(file);
-  const diagnose::ModelComparison after = diagnose::compare_model(diagnose::ResponseModel(fitted), pointers(data), {}, {});
+  const diagnose::ModelComparison after =
+      diagnose::compare_model(diagnose::ResponseModel(fitted), record_pointers(data), {}, {});
   o.force_after = after.force_nrmse;
   o.angle_after = after.angle_nrmse;
   EXPECT_TRUE(after.identified.has_value()) << after.identification_error;
@@ -104,7 +95,7 @@ TEST_P(HiddenEffect, RankedFirstAndTheErrorFalls) {
   rig::RigModel truth = start;
   truth.effects.push_back(test::hidden_effect(GetParam(), start));
   const std::string name = truth.effects.back()->name();
-  const Outcome o = run_loop(start, measure(truth, 100 + GetParam()), start.body.cog.z());
+  const Outcome o = run_loop(start, test::measure_histories(truth, 100 + GetParam()), start.body.cog.z());
   print(name, o);
   ASSERT_FALSE(o.diagnosis.ranking.empty());
   EXPECT_EQ(o.diagnosis.ranking.front().effect, name);
@@ -124,8 +115,8 @@ TEST(DiagnosisAcceptance, ControlDataBlamesNothing) {
   for (std::uint64_t seed : {200u, 201u, 202u}) {
     rig::RigModel truth = start;
     if (seed == 202u) truth.simulation.method = rig::IntegrationMethod::bdf;
-    const auto data = measure(truth, seed);
-    const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
+    const auto data = test::measure_histories(truth, seed);
+    const diagnose::Diagnosis d = diagnose::diagnose(start, record_pointers(data), {}, {});
     std::cout << "control " << seed << ": " << d.summary << " (residual " << d.noise_ratio << " x noise)\n";
     EXPECT_FALSE(d.missing_effect.has_value()) << *d.missing_effect;
     for (const auto& e : d.ranking) EXPECT_FALSE(e.significant) << e.effect;
@@ -137,8 +128,8 @@ TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
   rig::RigModel truth = start;
   truth.effects.push_back(test::hidden_effect(7, start));  // rod length error
   truth.effects.push_back(test::hidden_effect(9, start));  // load cell gain
-  const auto data = measure(truth, 300);
-  const diagnose::Diagnosis d = diagnose::diagnose(start, pointers(data), {}, {});
+  const auto data = test::measure_histories(truth, 300);
+  const diagnose::Diagnosis d = diagnose::diagnose(start, record_pointers(data), {}, {});
   std::vector<std::string> top;
   for (size_t i = 0; i < std::min<size_t>(3, d.ranking.size()); ++i) top.push_back(d.ranking[i].effect);
   std::cout << "two effects: " << d.summary << "; top 3:";
@@ -160,7 +151,7 @@ std::vector<rig::Record> defective(Defect d) {
     truth.sensors.force_noise_n *= 2;
     truth.sensors.angle_noise_rad *= 2;
   }
-  std::vector<rig::Record> data = measure(truth, 400);
+  std::vector<rig::Record> data = test::measure_histories(truth, 400);
   for (auto& h : data) {
     if (d == Defect::mid_swing) {
       // The logger started 2.3 s into the free swing: the record's first

@@ -14,20 +14,11 @@
 // identification's with the effect added lie within 2 mm of the truth.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <random>
-#include <sstream>
 
 #include "diagnose/body_parameters.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/model_comparison.hpp"
-#include "identify/identification.hpp"
-#include "identify/identification_rig.hpp"
-#include "io/rig_reader.hpp"
-#include "rig/effects.hpp"
-#include "rig/joint_compliance.hpp"
 #include "support/diagnosis_cases.hpp"
 #include "support/rig_cases.hpp"
 
@@ -61,26 +52,11 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
   EXPECT_EQ(*d.missing_effect, GetParam());
   EXPECT_EQ(d.ranking.front().effect, GetParam());
   // Added: the effect (its fitted block) and the body's fitted offsets.
-  rig::RigModel fitted = start;
   const diagnose::EffectFit& top = d.ranking.front();
-  const diagnose::BodyParameters bp = diagnose::body_parameters(start);
   // The fit with the right effect reaches the noise, so its body offsets are reported.
   ASSERT_TRUE(top.body_credible);
-  ASSERT_EQ(static_cast<int>(top.body.size()), bp.size());
-  Eigen::VectorXd delta(bp.size());
-  for (int k = 0; k < bp.size(); ++k) delta(k) = top.body[static_cast<size_t>(k)].value;
-  fitted.body = diagnose::body_with(start.body, bp, delta);
-  // The effect as a user adds it: diagnose's rig block through the reader.
-  const std::filesystem::path file =
-      std::filesystem::temp_directory_path() / ("rigflex-uncertain-body-" + top.effect + ".yaml");
-  {
-    std::ofstream out(file);
-    out << "effects:\n";
-    std::istringstream lines(top.rig_block);
-    for (std::string line; std::getline(lines, line);) out << "  " << line << "\n";
-  }
-  io::add_effects(fitted, file);
-  std::filesystem::remove(file);
+  ASSERT_EQ(static_cast<int>(top.body.size()), diagnose::body_parameters(start).size());
+  const rig::RigModel fitted = test::with_found(start, top);
   ASSERT_EQ(fitted.effects.size(), 1u);
   const auto before = diagnose::compare_model(diagnose::ResponseModel(start), record_pointers(data), {}, {});
   const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), record_pointers(data), {}, {});
@@ -105,9 +81,9 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealisticStart, UncertainBody,
-                         ::testing::Values("none", "below_noise", "rod_compliance", "rod_length_error", "fixed_frame_flexibility",
-                                           "rod_mass", "joint_friction", "air_drag", "encoder_offset",
-                                           "joint_position_error", "load_cell_gain"));
+                         ::testing::Values("none", "below_noise", "rod_compliance", "rod_length_error",
+                                           "fixed_frame_flexibility", "rod_mass", "joint_friction", "air_drag",
+                                           "encoder_offset", "joint_position_error", "load_cell_gain"));
 // Not here: carrying_frame_flexibility. From this start its fit stops at
 // 20 x the noise, short of the truth's, and the fixed frame's (at 4 x) is
 // named - also with twice the fit's iteration budget: a local minimum, not

@@ -10,6 +10,8 @@
 // identification of the same records, the rods nominal.
 #include <Eigen/Core>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -18,7 +20,11 @@
 #include <string>
 #include <vector>
 
+#include "diagnose/body_parameters.hpp"
+#include "diagnose/diagnosis.hpp"
 #include "identify/identification.hpp"
+#include "io/effects_file.hpp"
+#include "io/rig_reader.hpp"
 #include "identify/identification_rig.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
@@ -88,7 +94,8 @@ inline std::shared_ptr<const rig::Effect> hidden_effect(const std::string& name,
 inline std::vector<std::shared_ptr<const rig::Effect>> case_effects(const std::string& name,
                                                                     const rig::RigModel& nominal) {
   if (name == "none") return {};
-  if (name == "below_noise") return {std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 0.01, 0.07, std::nullopt})};
+  if (name == "below_noise")
+    return {std::make_shared<rig::AirDrag>(rig::AirDragParameters{1.2, 0.01, 0.07, std::nullopt})};
   if (name == "two_effects") return {hidden_effect(7, nominal), hidden_effect(9, nominal)};
   auto e = hidden_effect(name, nominal);
   if (!e) throw std::invalid_argument("no diagnosis case " + name);
@@ -125,13 +132,38 @@ inline rig::RigModel users_model(const rig::RigModel& nominal, const std::vector
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   rig::RigModel m = nominal;
   m.body.cog += rig::Vec3(0.003 * u(rng), 0.003 * u(rng), 0.007 * u(rng));
-  const identify::IdentificationRig idr = identify::identification_rig(nominal, identify::IdentificationAlgorithm::rigid);
+  const identify::IdentificationRig idr =
+      identify::identification_rig(nominal, identify::IdentificationAlgorithm::rigid);
   const identify::IdentificationResult r = identify::identify(idr, record_pointers(data), {});
   if (r.observable) {
     m.body.inertia = r.properties.inertia;
   } else {
     const Eigen::Vector3d scale(1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng), 1.0 + 0.1 * u(rng));
     m.body.inertia = scale.cwiseSqrt().asDiagonal() * nominal.body.inertia * scale.cwiseSqrt().asDiagonal();
+  }
+  return m;
+}
+
+// `start` with what diagnose found added as a user adds it: the body's
+// fitted offsets where they are reported (`body_credible`), and the effect's
+// rig block written as an effects file and read back through the reader.
+inline rig::RigModel with_found(const rig::RigModel& start, const diagnose::EffectFit& found) {
+  rig::RigModel m = start;
+  if (found.body_credible && !found.body.empty()) {
+    const diagnose::BodyParameters bp = diagnose::body_parameters(start);
+    Eigen::VectorXd delta(bp.size());
+    for (int k = 0; k < bp.size(); ++k) delta(k) = found.body[static_cast<size_t>(k)].value;
+    m.body = diagnose::body_with(start.body, bp, delta);
+  }
+  if (!found.rig_block.empty()) {
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("rigflex-found-" + found.effect + ".yaml");
+    {
+      std::ofstream out(file);
+      out << io::effects_file_text({}, found.rig_block);
+    }
+    io::add_effects(m, file);
+    std::filesystem::remove(file);
   }
   return m;
 }
