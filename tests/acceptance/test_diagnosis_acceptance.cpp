@@ -139,56 +139,48 @@ TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
   EXPECT_NE(std::find(top.begin(), top.end(), "load_cell_gain"), top.end());
 }
 
-// Real data's defects on a record set with a hidden rod length error, all
-// at once as a real log can have them: the logger started mid-swing, the
-// sample rate is not the nominal one, a sample is missing and the sensors
-// are twice as noisy as the rig file says.
-enum class Defect { mid_swing, sample_rate, dropped_sample, double_noise };
-
-std::vector<rig::Record> defective(const std::vector<Defect>& defects) {
-  auto has = [&](Defect d) { return std::find(defects.begin(), defects.end(), d) != defects.end(); };
+// A record set with a hidden rod length error and all of a real log's
+// defects at once: the logger started mid-swing, the sample rate is not
+// the nominal one, a sample is missing and the sensors are twice as noisy
+// as the rig file says.
+std::vector<rig::Record> real_log_records() {
   const rig::RigModel start = start_model();
   rig::RigModel truth = start;
   truth.effects.push_back(test::hidden_effect(7, start));
-  if (has(Defect::sample_rate)) truth.sensors.sample_rate_hz = 487.0;
-  if (has(Defect::double_noise)) {
-    truth.sensors.force_noise_n *= 2;
-    truth.sensors.angle_noise_rad *= 2;
-  }
+  truth.sensors.sample_rate_hz = 487.0;
+  truth.sensors.force_noise_n *= 2;
+  truth.sensors.angle_noise_rad *= 2;
   std::vector<rig::Record> data = test::measure_histories(truth, 400);
   for (auto& h : data) {
-    if (has(Defect::mid_swing)) {
-      // The logger started 2.3 s into the free swing: the record's first
-      // sample is anywhere in a cycle; its clock starts at zero again.
-      const Eigen::Index k0 = static_cast<Eigen::Index>(2.3 * truth.sensors.sample_rate_hz), n = h.t.size() - k0;
-      const double t0 = h.t(k0);
-      const Eigen::VectorXd t = h.t.tail(n).array() - t0;
-      h.t = t;
-      h.force = h.force.bottomRows(n).eval();
-      h.alpha = h.alpha.bottomRows(n).eval();
-      h.beta = h.beta.bottomRows(n).eval();
-    }
-    if (has(Defect::dropped_sample)) {
-      const Eigen::Index drop = 3001, n = h.t.size();
-      auto cut = [&](Eigen::MatrixXd& m) {
-        Eigen::MatrixXd out(n - 1, m.cols());
-        out << m.topRows(drop), m.bottomRows(n - drop - 1);
-        m = out;
-      };
-      Eigen::MatrixXd t = h.t;
-      cut(t);
-      h.t = t.col(0);
-      cut(h.force);
-      cut(h.alpha);
-      cut(h.beta);
-    }
+    // The logger started 2.3 s into the free swing: the record's first
+    // sample is anywhere in a cycle; its clock starts at zero again.
+    const Eigen::Index k0 = static_cast<Eigen::Index>(2.3 * truth.sensors.sample_rate_hz), n = h.t.size() - k0;
+    const double t0 = h.t(k0);
+    const Eigen::VectorXd t = h.t.tail(n).array() - t0;
+    h.t = t;
+    h.force = h.force.bottomRows(n).eval();
+    h.alpha = h.alpha.bottomRows(n).eval();
+    h.beta = h.beta.bottomRows(n).eval();
+    // One sample lost.
+    const Eigen::Index drop = 3001, m = h.t.size();
+    auto cut = [&](Eigen::MatrixXd& x) {
+      Eigen::MatrixXd out(m - 1, x.cols());
+      out << x.topRows(drop), x.bottomRows(m - drop - 1);
+      x = out;
+    };
+    Eigen::MatrixXd tt = h.t;
+    cut(tt);
+    h.t = tt.col(0);
+    cut(h.force);
+    cut(h.alpha);
+    cut(h.beta);
   }
   return data;
 }
 
 TEST(RealDataDefects, AllAtOnceStillFindTheRodLengthError) {
   const rig::RigModel start = start_model();
-  const auto data = defective({Defect::mid_swing, Defect::sample_rate, Defect::dropped_sample, Defect::double_noise});
+  const auto data = real_log_records();
   const Outcome o = run_loop(start, data, start.body.cog.z());
   print("real-data defects", o);
   ASSERT_TRUE(o.diagnosis.missing_effect.has_value());
