@@ -1,10 +1,12 @@
 // rigflex diagnose RIG.yaml DATA... --out DIR [--effects FILE]... [--only NAMES]
-//   [--threads N] [--quiet]:
+//   [--threads N] [--max-effects N] [--quiet]:
 // which effect of the catalogue the model misses: each one the model lacks
 // fitted to the measurements with every history's swing state, ranked by
 // the share of the residual it explains; DIR/diagnosis.json, and per effect
 // DIR/effects/<effect>.yaml with the fitted values, ready for
-// `rigflex compare --effects` or to paste into the rig file.
+// `rigflex compare --effects` or to paste into the rig file; where an effect
+// is missing, DIR/effects/found.yaml with every effect of the chain (the
+// missing one, then each further one found with it) refitted together.
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -27,7 +29,7 @@ struct DiagnoseArgs {
   std::vector<std::string> data, effects, only;
   std::string out;
   double fit_window = 0;
-  int threads = 0;
+  int threads = 0, max_effects = 3;
   bool quiet = false;
 };
 
@@ -41,22 +43,34 @@ std::string effects_file_text(const diagnose::EffectFit& e) {
   return io::effects_file_text({fitted.str(), e.advice + "."}, e.rig_block);
 }
 
+// The verdict's model: the chain's effects, or the model as it is.
+std::string verdict_model(const diagnose::Diagnosis& d) {
+  std::string names;
+  for (const auto& st : d.chain) names += (names.empty() ? "" : " + ") + st.effect;
+  return names.empty() ? "the model as it is" : names;
+}
+
+// Every effect of the chain as its last step refitted them.
+std::string found_file_text(const diagnose::Diagnosis& d) {
+  const diagnose::ChainStep& last = d.chain.back();
+  char fitted[200];
+  std::snprintf(fitted, sizeof fitted, "Fitted by rigflex diagnose: %s, refitted together; residual %.3g x the noise "
+                "(%.3g x without them).", verdict_model(d).c_str(), last.noise_ratio, d.noise_ratio);
+  return io::effects_file_text({fitted}, last.rig_block);
+}
+
 // The body's offsets from the rig file fitted with the verdict's model: what
 // to correct in the rig file's `body` (those marked "off" lie beyond what
 // its `uncertainty` states).
 void print_body(const diagnose::Diagnosis& d) {
   if (d.body.empty()) {
-    double misfit = d.noise_ratio;
-    for (const auto& e : d.ranking) {
-      if (d.missing_effect && e.effect == *d.missing_effect) misfit = e.residual / d.samples;
-    }
+    const double misfit = d.chain.empty() ? d.noise_ratio : d.chain.back().noise_ratio;
     std::printf("body: as the rig file gives it (the fit with %s stays at %.3g x the noise; there the body's offsets "
                 "would absorb the model's remaining error)\n",
-                d.missing_effect ? d.missing_effect->c_str() : "the model as it is", misfit);
+                verdict_model(d).c_str(), misfit);
     return;
   }
-  std::printf("body fitted with %s (offset from the rig file, its std, the stated std):\n",
-              d.missing_effect ? d.missing_effect->c_str() : "the model as it is");
+  std::printf("body fitted with %s (offset from the rig file, its std, the stated std):\n", verdict_model(d).c_str());
   for (const auto& p : d.body) {
     const double k = p.unit == "m" ? 1e3 : 1.0;
     const char* unit = p.unit == "m" ? "mm" : p.unit.c_str();
@@ -70,6 +84,7 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
   o.effects = a.only;
+  o.max_effects = a.max_effects;
   if (!a.quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "diagnose: %s\n", s.c_str()); };
   try {
     o.validate();
@@ -99,6 +114,12 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
       std::printf("to capture it properly: %s\n", e.advice.c_str());
     }
   }
+  if (d.chain.size() > 1 || !d.after_chain.empty()) {
+    std::printf("chain: the model as it is %.3g x the noise", d.noise_ratio);
+    for (const auto& st : d.chain) std::printf(" -> + %s %.3g x", st.effect.c_str(), st.noise_ratio);
+    std::printf("%s\n", d.after_chain.empty() ? "" : " (nothing further significant)");
+  }
+  if (!d.chain_note.empty()) std::printf("%s\n", d.chain_note.c_str());
   report::CompareContext ctx;
   ctx.rig = mm.model.name;
   ctx.model_label = mm.label;
@@ -111,6 +132,9 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   // A file per effect that the fit made an effect of (a compliance fitted to zero is none).
   for (const auto& e : d.ranking) {
     if (!e.rig_block.empty()) batch.add_text(out / "effects" / (e.effect + ".yaml"), effects_file_text(e));
+  }
+  if (!d.chain.empty() && !d.chain.back().rig_block.empty()) {
+    batch.add_text(out / "effects" / "found.yaml", found_file_text(d));
   }
   batch.commit();
   std::printf("wrote %s/diagnosis.json, %s/diagnosis.html and the fitted effects in %s/effects\n", a.out.c_str(),
@@ -135,6 +159,8 @@ void add_diagnose_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--fit-window", a->fit_window, "seconds at the start of each record the swing state is first fitted to")
       ->check(positive());
   cmd->add_option("--threads", a->threads, "threads (0: all cores)");
+  cmd->add_option("--max-effects", a->max_effects, "effects the chain accepts at most (1: the missing one alone)")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", a->out, "output folder")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });

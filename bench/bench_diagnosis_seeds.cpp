@@ -7,10 +7,11 @@
 // once (a rod length error and load-cell gains) - and per seed: the records
 // simulated (6 histories of 15 s, spec sensor noise), the user's model (CoG
 // within +-3/+-3/+-7 mm, inertia from the rigid identification, rods
-// nominal), diagnose with the whole catalogue, then the first-ranked
-// effect's file and the body's fitted offsets added. One row per case:
+// nominal), diagnose with the whole catalogue, then what it found added:
+// the chain's effects as its last step refitted them (the first-ranked
+// effect's where none is significant) and the body's fitted offsets. One row per case:
 //   named    seeds whose missing effect is the hidden one (controls: none
-//            named; two effects: both among the significant)
+//            named; two effects: both, one after the other, in the chain)
 //   fall     worst force (angle, where the effect shows more there) NRMSE
 //            before / after adding what diagnose found (target >= 5)
 //   zG fit   worst |fitted CoG height - truth|, mm (target <= 2)
@@ -109,17 +110,19 @@ void run_case(const std::string& name, const Options& o, Row& row) {
       ok = !d.missing_effect;
     } else if (name == "two_effects") {
       int found = 0;
-      for (const auto& e : d.ranking) {
-        found += e.significant && (e.effect == "rod_length_error" || e.effect == "load_cell_gain");
-      }
-      ok = found == 2;
+      for (const auto& st : d.chain) found += st.effect == "rod_length_error" || st.effect == "load_cell_gain";
+      ok = found == 2 && d.chain.size() == 2;
     } else {
       ok = d.missing_effect && *d.missing_effect == name;
     }
     row.named += ok;
-    if (!ok) row.misses += (row.misses.empty() ? "" : "; ") + d.missing_effect.value_or("none");
+    if (!ok) {
+      std::string named;
+      for (const auto& st : d.chain) named += (named.empty() ? "" : "+") + st.effect;
+      row.misses += (row.misses.empty() ? "" : "; ") + (named.empty() ? std::string("none") : named);
+    }
     if (control || d.ranking.empty()) continue;
-    const rig::RigModel fitted = test::with_found(start, d.ranking.front());
+    const rig::RigModel fitted = test::with_found(start, d);
     const auto before = diagnose::compare_model(diagnose::ResponseModel(start), test::record_pointers(data), {}, {});
     const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), test::record_pointers(data), {}, {});
     const double fall = before.force_nrmse >= before.angle_nrmse ? before.force_nrmse / after.force_nrmse

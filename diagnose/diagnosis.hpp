@@ -60,6 +60,8 @@ struct DiagnosisOptions {
   // fit equally well" at this level (two-sided); otherwise both are named.
   double discrimination = 0.01;
   std::vector<std::string> effects;  // only these (empty: every effect the model lacks)
+  // Effects the chain accepts at most (1: the missing effect alone).
+  int max_effects = 3;
   int threads = 0;                // 0: the hardware's
   std::function<void(const std::string&)> progress;
   // A fitted model parameter is "off" beyond this many of its stated
@@ -107,6 +109,20 @@ struct EffectFit {
   bool body_credible = false;
 };
 
+// One step of the chain: the model with the effects accepted so far, all
+// of them refitted together with the body and the swing states.
+struct ChainStep {
+  std::string effect;                       // added at this step
+  double residual = 0;                      // noise-weighted sum of squares with it
+  double noise_ratio = 0;                   // residual / samples
+  double p_value = 1;                       // its F test against the step before
+  std::vector<FittedParameter> parameters;  // every accepted effect's ("<effect>.<name>" for the earlier ones)
+  std::string rig_block;                    // YAML under `effects:` adding them all
+  std::vector<FittedParameter> body;        // as EffectFit::body
+  bool body_credible = false;
+  std::vector<EffectFit> ranking;           // tested at this step, on top of the steps before (the first: none)
+};
+
 struct Diagnosis {
   std::vector<HistoryComparison> baseline;  // compare's result per history
   ResidualAnalysis baseline_analysis;       // where the starting model fails (spectra, trend, decay)
@@ -117,6 +133,13 @@ struct Diagnosis {
   std::vector<std::string> present;         // effects the model has (not tested)
   std::vector<EffectFit> ranking;           // best first
   std::optional<std::string> missing_effect;
+  // The missing effect, then each further effect found significant with the
+  // ones before it in the model (and refitted): empty when none is missing.
+  std::vector<ChainStep> chain;
+  // Tested on top of the whole chain, none significant; empty where the
+  // chain stopped because its model reached the noise (or max_effects).
+  std::vector<EffectFit> after_chain;
+  std::string chain_note;  // why the chain stopped above the noise, where it did without testing further
   std::vector<std::string> indistinguishable;  // significant effects the records cannot tell from it
   // The body's offsets fitted with the missing effect (or, with none, with
   // the model as it is), and those beyond what the rig file states; empty

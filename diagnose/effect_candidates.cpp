@@ -30,7 +30,7 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& context) 
     auto write = f.write;
     out.push_back({kind.name, std::move(f.parameters), std::move(f.make),
                    [name = kind.name, write](const Eigen::VectorXd& p) { return rig::effect_yaml(name, write(p)); },
-                   std::move(f.advice), std::move(f.evidence)});
+                   std::move(f.advice), std::move(f.evidence), f.stand_in});
   }
   return out;
 }

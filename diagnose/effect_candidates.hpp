@@ -34,6 +34,7 @@ struct EffectCandidate {
   std::function<std::string(const Eigen::VectorXd&)> rig_block;
   std::string advice;                               // what to add to capture it properly
   std::string evidence;                             // a measurement that shows it directly
+  bool stand_in = false;                            // rig::EffectFitting::stand_in
 };
 
 // Every effect of the catalogue, in the spec's order.

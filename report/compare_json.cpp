@@ -170,6 +170,52 @@ Json body_offsets_json(const std::vector<diagnose::FittedParameter>& body) {
   }
   return o;
 }
+// The fitted values by name.
+Json parameters_json(const std::vector<diagnose::FittedParameter>& parameters) {
+  Json params = Json::object();
+  for (const auto& p : parameters) {
+    params[p.name] = {{"value", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
+                      {"plausible_range", {finite_or_null(p.low), finite_or_null(p.high)}}, {"plausible", p.plausible}};
+  }
+  return params;
+}
+
+// One candidate's fit: share explained, tests, fitted values.
+Json effect_fit_json(const diagnose::EffectFit& e) {
+  Json o;
+  o["effect"] = e.effect;
+  o["explained_fraction"] = finite_or_null(e.explained_fraction);
+  o["significant"] = e.significant;
+  o["plausible"] = e.plausible;
+  o["parameters"] = parameters_json(e.parameters);
+  o["body"] = body_offsets_json(e.body);
+  o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
+  o["f_statistic"] = finite_or_null(e.f_statistic);
+  o["p_value"] = finite_or_null(e.p_value);
+  o["versus_first_p"] = finite_or_null(e.versus_first_p);
+  o["refinements"] = e.refinements;
+  o["advice"] = e.advice;
+  o["evidence"] = e.evidence;
+  o["rig_block"] = e.rig_block;
+  if (!e.note.empty()) o["note"] = e.note;
+  return o;
+}
+
+// The chain: each step's effect, the residual with it, every effect's
+// refitted values, the block that adds them all, and the candidates tested
+// at that step (on top of the steps before).
+Json chain_json(const std::vector<diagnose::ChainStep>& chain) {
+  Json out = Json::array();
+  for (const auto& st : chain) {
+    Json tested = Json::array();
+    for (const auto& e : st.ranking) tested.push_back(effect_fit_json(e));
+    out.push_back({{"effect", st.effect}, {"residual_to_noise", finite_or_null(st.noise_ratio)},
+                   {"p_value", finite_or_null(st.p_value)}, {"parameters", parameters_json(st.parameters)},
+                   {"body", body_offsets_json(st.body)}, {"body_credible", st.body_credible},
+                   {"rig_block", st.rig_block}, {"tested", tested}});
+  }
+  return out;
+}
 }  // namespace
 
 Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
@@ -187,31 +233,13 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   for (const auto& p : d.parameters_off) off.push_back(p.name);
   j["model_parameters_off"] = off;
   Json ranking = Json::array();
-  for (const auto& e : d.ranking) {
-    Json o;
-    o["effect"] = e.effect;
-    o["explained_fraction"] = finite_or_null(e.explained_fraction);
-    o["significant"] = e.significant;
-    o["plausible"] = e.plausible;
-    Json params = Json::object();
-    for (const auto& p : e.parameters) {
-      params[p.name] = {{"value", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
-                        {"plausible_range", {finite_or_null(p.low), finite_or_null(p.high)}}, {"plausible", p.plausible}};
-    }
-    o["parameters"] = params;
-    o["body"] = body_offsets_json(e.body);
-    o["linear_explained_fraction"] = finite_or_null(e.linear_explained_fraction);
-    o["f_statistic"] = finite_or_null(e.f_statistic);
-    o["p_value"] = finite_or_null(e.p_value);
-    o["versus_first_p"] = finite_or_null(e.versus_first_p);
-    o["refinements"] = e.refinements;
-    o["advice"] = e.advice;
-    o["evidence"] = e.evidence;
-    o["rig_block"] = e.rig_block;
-    if (!e.note.empty()) o["note"] = e.note;
-    ranking.push_back(o);
-  }
+  for (const auto& e : d.ranking) ranking.push_back(effect_fit_json(e));
   j["ranking"] = ranking;
+  j["chain"] = chain_json(d.chain);
+  Json after = Json::array();
+  for (const auto& e : d.after_chain) after.push_back(effect_fit_json(e));
+  j["tested_after_chain"] = after;
+  j["chain_note"] = d.chain_note;
   return j;
 }
 

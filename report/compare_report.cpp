@@ -399,6 +399,33 @@ void missing_effect_section(HtmlReport& r, const diagnose::Diagnosis& d) {
                 keep_indentation(e->rig_block));
 }
 
+// The effects accepted one after another, the residual after each: the
+// error falling step by step, and the block that adds them all.
+void chain_section(HtmlReport& r, const diagnose::Diagnosis& d) {
+  if (d.chain.size() < 2 && d.after_chain.empty() && d.chain_note.empty()) return;
+  r.heading("The chain: effects added one after another");
+  Table t{{"step", "effect added", "residual / noise", "p-value", "tested at this step"}, {}};
+  t.rows.push_back({"0", "(the model as it is)", fmt("%.3g", d.noise_ratio), "", ""});
+  for (size_t k = 0; k < d.chain.size(); ++k) {
+    const diagnose::ChainStep& st = d.chain[k];
+    std::vector<std::string> tested;
+    for (const auto& e : st.ranking) tested.push_back(ranked_name(e));
+    t.rows.push_back({std::to_string(k + 1), st.effect, fmt("%.3g", st.noise_ratio), fmt("%.3g", st.p_value),
+                      k == 0 ? "the ranking above" : joined(tested, "")});
+  }
+  r.table(t, "Chain (each step refits every effect before it, the body and the swing states)");
+  if (!d.after_chain.empty()) {
+    std::vector<std::string> tested;
+    for (const auto& e : d.after_chain) tested.push_back(ranked_name(e));
+    r.paragraph("Tested on top of the whole chain, none significant: " + joined(tested, "") + ".");
+  }
+  if (!d.chain_note.empty()) r.paragraph("Note: " + d.chain_note + ".");
+  if (!d.chain.empty() && !d.chain.back().rig_block.empty())
+    r.paragraph("Every effect of the chain as its last step fitted them, for the rig file under `effects:` "
+                "(rigflex diagnose writes it as effects/found.yaml):\n" +
+                keep_indentation(d.chain.back().rig_block));
+}
+
 void baseline_section(HtmlReport& r, const diagnose::Diagnosis& d, Eigen::Index channels,
                       const diagnose::ResidualAnalysis* analysis) {
   if (d.baseline.empty()) return;
@@ -444,6 +471,7 @@ HtmlReport diagnosis_report(const diagnose::Diagnosis& d, const CompareContext& 
   ranking_section(r, d);
   parameters_table(r, d);
   missing_effect_section(r, d);
+  chain_section(r, d);
   baseline_section(r, d, channels, baseline_analysis);
   return r;
 }

@@ -91,6 +91,11 @@ struct EffectFitting {
   // A measurement that shows the effect directly: what separates it from
   // an effect that fits the same swing records as well.
   std::string evidence;
+  // The fitted effect is a stand-in for a richer model (a frame's
+  // quasi-static joint compliance for its FE model): what its fit leaves
+  // above the noise is its own model error, which other effects fitted on
+  // top of it would absorb.
+  bool stand_in = false;
 };
 
 struct EffectKind {

@@ -139,6 +139,7 @@ EffectFitting fit_fixed(const FitContext& x) {
   f.advice = "model the fixed frame with finite elements and reduce it onto the upper joints "
              "(effects.fixed_frame_flexibility.model, or a `rigflex reduce` export); the fitted joint compliance "
              "is a stand-in that captures its quasi-static part";
+  f.stand_in = true;
   f.evidence = "an accelerometer or a dial gauge on the fixed frame at an upper joint: only the fixed frame's "
                "deformation moves it";
   return f;
@@ -169,6 +170,7 @@ EffectFitting fit_carrying(const FitContext& x) {
   };
   f.advice = "model the carrying frame with finite elements and reduce it free-free onto the lower joints "
              "(effects.carrying_frame_flexibility.model); the fitted plate compliance is a stand-in";
+  f.stand_in = true;
   f.evidence = "accelerometers at two lower joints and on the body: the carrying frame deforms where they leave "
                "the body's rigid motion";
   return f;

@@ -123,22 +123,6 @@ TEST(DiagnosisAcceptance, ControlDataBlamesNothing) {
   for (const auto& e : d.ranking) EXPECT_FALSE(e.significant) << e.effect;
 }
 
-TEST(DiagnosisAcceptance, TwoHiddenEffectsAreBothInTheTopThree) {
-  const rig::RigModel start = start_model();
-  rig::RigModel truth = start;
-  truth.effects.push_back(test::hidden_effect(7, start));  // rod length error
-  truth.effects.push_back(test::hidden_effect(9, start));  // load cell gain
-  const auto data = test::measure_histories(truth, 300);
-  const diagnose::Diagnosis d = diagnose::diagnose(start, record_pointers(data), {}, {});
-  std::vector<std::string> top;
-  for (size_t i = 0; i < std::min<size_t>(3, d.ranking.size()); ++i) top.push_back(d.ranking[i].effect);
-  std::cout << "two effects: " << d.summary << "; top 3:";
-  for (const auto& t : top) std::cout << " " << t;
-  std::cout << "\n";
-  EXPECT_NE(std::find(top.begin(), top.end(), "rod_length_error"), top.end());
-  EXPECT_NE(std::find(top.begin(), top.end(), "load_cell_gain"), top.end());
-}
-
 // A record set with a hidden rod length error and all of a real log's
 // defects at once: the logger started mid-swing, the sample rate is not
 // the nominal one, a sample is missing and the sensors are twice as noisy

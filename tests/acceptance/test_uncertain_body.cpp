@@ -5,8 +5,9 @@
 // estimate within 10 % where the records do not determine it), the rods
 // nominal (tests/support/diagnosis_cases.hpp). Data simulated with one
 // catalogue effect hidden, or nothing, or an effect below the noise (the
-// controls), sensor noise on. diagnose must name the hidden effect (nothing
-// on the controls) though the body is off: the body's CoG and inertia are
+// controls), or two effects at once, sensor noise on. diagnose must name
+// the hidden effect - both, one after the other in its chain, where two are
+// hidden; nothing on the controls - though the body is off: the body's CoG and inertia are
 // refitted in every fit, with the default uncertainty (rig::BodyUncertainty)
 // as their prior. Adding what it found - the effect and the body's fitted
 // offsets - the force NRMSE (the angles' for an effect that shows far more
@@ -14,6 +15,7 @@
 // identification's with the effect added lie within 2 mm of the truth.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <iostream>
 
 #include "diagnose/body_parameters.hpp"
@@ -48,16 +50,25 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
     EXPECT_FALSE(d.missing_effect.has_value()) << *d.missing_effect;
     return;
   }
+  // Every hidden effect named, one after another in the chain, and nothing else.
+  std::vector<std::string> hidden;
+  for (const auto& e : truth.effects) hidden.push_back(e->name());
   ASSERT_TRUE(d.missing_effect.has_value());
-  EXPECT_EQ(*d.missing_effect, GetParam());
-  EXPECT_EQ(d.ranking.front().effect, GetParam());
-  // Added: the effect (its fitted block) and the body's fitted offsets.
-  const diagnose::EffectFit& top = d.ranking.front();
-  // The fit with the right effect reaches the noise, so its body offsets are reported.
-  ASSERT_TRUE(top.body_credible);
-  ASSERT_EQ(static_cast<int>(top.body.size()), diagnose::body_parameters(start).size());
-  const rig::RigModel fitted = test::with_found(start, top);
-  ASSERT_EQ(fitted.effects.size(), 1u);
+  ASSERT_EQ(d.chain.size(), hidden.size()) << d.summary;
+  EXPECT_EQ(*d.missing_effect, d.chain.front().effect);
+  for (const auto& step : d.chain) {
+    std::cout << "   chain: + " << step.effect << " -> " << step.noise_ratio << " x noise\n";
+    EXPECT_NE(std::find(hidden.begin(), hidden.end(), step.effect), hidden.end()) << step.effect;
+  }
+  if (hidden.size() == 1) {
+    EXPECT_EQ(d.ranking.front().effect, hidden.front());
+  }
+  // Added: the effects (the chain's last block) and the body's fitted offsets.
+  // The fit with the right effects reaches the noise, so its body offsets are reported.
+  ASSERT_TRUE(d.chain.back().body_credible);
+  ASSERT_EQ(static_cast<int>(d.chain.back().body.size()), diagnose::body_parameters(start).size());
+  const rig::RigModel fitted = test::with_found(start, d);
+  ASSERT_EQ(fitted.effects.size(), hidden.size());
   const auto before = diagnose::compare_model(diagnose::ResponseModel(start), record_pointers(data), {}, {});
   const auto after = diagnose::compare_model(diagnose::ResponseModel(fitted), record_pointers(data), {}, {});
   std::cout << "   force NRMSE " << before.force_nrmse << " -> " << after.force_nrmse << "; CoG height error "
@@ -83,7 +94,8 @@ TEST_P(UncertainBody, TheHiddenEffectIsNamedAndAddingItWorks) {
 INSTANTIATE_TEST_SUITE_P(RealisticStart, UncertainBody,
                          ::testing::Values("none", "below_noise", "rod_compliance", "rod_length_error",
                                            "fixed_frame_flexibility", "rod_mass", "joint_friction", "air_drag",
-                                           "encoder_offset", "joint_position_error", "load_cell_gain"));
+                                           "encoder_offset", "joint_position_error", "load_cell_gain",
+                                           "two_effects"));
 // Not here: carrying_frame_flexibility. From this start its fit stops at
 // 20 x the noise, short of the truth's, and the fixed frame's (at 4 x) is
 // named - also with twice the fit's iteration budget: a local minimum, not

@@ -81,6 +81,12 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
   EXPECT_TRUE(j["ranking"][0]["parameters"].contains("delta1"));
   EXPECT_TRUE(fs::exists(out / "effects" / "rod_length_error.yaml"));
   EXPECT_TRUE(fs::exists(out / "diagnosis.html"));
+  // The length error brings the model to the noise: a chain of one, its
+  // file the found effects' (as its own, with the chain's comment).
+  ASSERT_EQ(j["chain"].size(), 1u);
+  EXPECT_EQ(j["chain"][0]["rig_block"], j["ranking"][0]["rig_block"]);
+  EXPECT_TRUE(j["tested_after_chain"].empty());
+  EXPECT_TRUE(fs::exists(out / "effects" / "found.yaml"));
   // The written effect file is a valid --effects file.
   EXPECT_EQ(run("compare " + rig().string() + " " + data() + " --effects " + (out / "effects" / "rod_length_error.yaml").string() +
                 " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);

@@ -1,6 +1,7 @@
 // examples/hidden-effect as a test: the tutorial's script, run start to
 // end, must find the hidden effect and show the error falling.
-//  - diagnose names fixed_frame_flexibility as the missing effect;
+//  - diagnose names fixed_frame_flexibility as the missing effect, and its
+//    chain stops at that stand-in;
 //  - the fitted stand-in cuts the swing-band force NRMSE at least 5x and the
 //    FE frame model (the proper fix) at least 5x too;
 //  - the identified CoG height is within 2 mm of the truth with the FE frame
@@ -38,6 +39,10 @@ TEST(TutorialHiddenEffect, FindsTheFrameAndTheErrorFalls) {
   EXPECT_EQ(diagnosis["missing_effect"], "fixed_frame_flexibility");
   EXPECT_EQ(diagnosis["ranking"][0]["effect"], "fixed_frame_flexibility");
   EXPECT_TRUE(diagnosis["ranking"][0]["significant"]);
+  // The stand-in stays far above the noise: the chain stops there rather
+  // than let further effects absorb the stand-in's own misfit.
+  ASSERT_EQ(diagnosis["chain"].size(), 1u);
+  EXPECT_NE(diagnosis["chain_note"].get<std::string>().find("stand-in"), std::string::npos);
 
   const Json first = load(dir / "compare-1" / "compare.json");
   const Json stand_in = load(dir / "compare-2" / "compare.json");

@@ -120,6 +120,9 @@ TEST(Diagnosis, OptionsAreChecked) {
   o = {};
   o.compare.fit_window_s = -1;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.max_effects = 0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
   EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
 }
 

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "report/compare_json.hpp"
 #include "report/reports.hpp"
 #include "support/synthetic_reports.hpp"
 
@@ -143,6 +144,46 @@ TEST(DiagnosisReport, KeepsTheIndentationOfTheRigBlock) {
   const report::HtmlReport r = report::diagnosis_report(d, context());
   EXPECT_TRUE(has(r, "fixed_frame_flexibility:\n\u00a0\u00a0joint_compliance:\n\u00a0\u00a0\u00a0\u00a0twist: 1e-07"));
   EXPECT_TRUE(has(r, "effects/air_drag.yaml"));
+}
+
+// Two effects found one after the other: the chain's table with the
+// residual after each step, what was tested at the second step, and the
+// block that adds both; the JSON carries the same.
+TEST(DiagnosisReport, ShowsTheChainWithTheErrorAfterEachStep) {
+  diagnose::Diagnosis d = diagnosis(true);
+  diagnose::ChainStep first;
+  first.effect = "air_drag";
+  first.noise_ratio = 2.5;
+  first.rig_block = d.ranking[0].rig_block;
+  diagnose::ChainStep second;
+  second.effect = "joint_friction";
+  second.noise_ratio = 1.05;
+  second.p_value = 1e-12;
+  second.rig_block = d.ranking[0].rig_block + "joint_friction: {viscous: 0.3}\n";
+  second.ranking = {effect("joint_friction", 0.55, true), effect("rod_compliance", 0.01, false)};
+  d.chain = {first, second};
+  const report::HtmlReport r = report::diagnosis_report(d, context());
+  for (const char* s : {"The chain: effects added one after another", "(the model as it is)", "2.5", "1.05",
+                        "joint_friction *, rod_compliance", "effects/found.yaml", "joint_friction: {viscous: 0.3}"})
+    EXPECT_TRUE(has(r, s)) << s;
+  const nlohmann::json j = report::diagnosis_json(d, context());
+  ASSERT_EQ(j["chain"].size(), 2u);
+  EXPECT_EQ(j["chain"][1]["effect"], "joint_friction");
+  EXPECT_DOUBLE_EQ(j["chain"][1]["residual_to_noise"].get<double>(), 1.05);
+  EXPECT_EQ(j["chain"][1]["tested"].size(), 2u);
+  EXPECT_EQ(j["chain"][1]["rig_block"], second.rig_block);
+  EXPECT_TRUE(j["tested_after_chain"].empty());
+  // One effect and nothing further significant on top of it: the table
+  // still shows the step, and what was tested after it.
+  d.chain = {first};
+  d.after_chain = {effect("rod_compliance", 0.01, false)};
+  const report::HtmlReport one = report::diagnosis_report(d, context());
+  EXPECT_TRUE(has(one, "Tested on top of the whole chain, none significant: rod_compliance."));
+  d.after_chain.clear();
+  EXPECT_FALSE(has(report::diagnosis_report(d, context()), "The chain:"));
+  d.chain_note = "the chain stops at air_drag";
+  EXPECT_TRUE(has(report::diagnosis_report(d, context()), "Note: the chain stops at air_drag."));
+  EXPECT_EQ(report::diagnosis_json(d, context())["chain_note"], "the chain stops at air_drag");
 }
 
 TEST(DiagnosisReport, WithTheBaselineAnalysisAddsSpectraTrendAndDecay) {

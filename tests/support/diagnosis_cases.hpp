@@ -145,27 +145,41 @@ inline rig::RigModel users_model(const rig::RigModel& nominal, const std::vector
 }
 
 // `start` with what diagnose found added as a user adds it: the body's
-// fitted offsets where they are reported (`body_credible`), and the effect's
-// rig block written as an effects file and read back through the reader.
-inline rig::RigModel with_found(const rig::RigModel& start, const diagnose::EffectFit& found) {
+// fitted offsets where they are reported (`body_credible`), and the
+// effects' rig block written as an effects file and read back through the
+// reader.
+inline rig::RigModel with_found(const rig::RigModel& start, const std::vector<diagnose::FittedParameter>& body,
+                                bool body_credible, const std::string& rig_block, const std::string& label) {
   rig::RigModel m = start;
-  if (found.body_credible && !found.body.empty()) {
+  if (body_credible && !body.empty()) {
     const diagnose::BodyParameters bp = diagnose::body_parameters(start);
     Eigen::VectorXd delta(bp.size());
-    for (int k = 0; k < bp.size(); ++k) delta(k) = found.body[static_cast<size_t>(k)].value;
+    for (int k = 0; k < bp.size(); ++k) delta(k) = body[static_cast<size_t>(k)].value;
     m.body = diagnose::body_with(start.body, bp, delta);
   }
-  if (!found.rig_block.empty()) {
-    const std::filesystem::path file =
-        std::filesystem::temp_directory_path() / ("rigflex-found-" + found.effect + ".yaml");
+  if (!rig_block.empty()) {
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / ("rigflex-found-" + label + ".yaml");
     {
       std::ofstream out(file);
-      out << io::effects_file_text({}, found.rig_block);
+      out << io::effects_file_text({}, rig_block);
     }
     io::add_effects(m, file);
     std::filesystem::remove(file);
   }
   return m;
+}
+
+// One effect as the ranking fitted it.
+inline rig::RigModel with_found(const rig::RigModel& start, const diagnose::EffectFit& found) {
+  return with_found(start, found.body, found.body_credible, found.rig_block, found.effect);
+}
+
+// Every effect of the diagnosis' chain as its last step refitted them; the
+// first-ranked effect where nothing was found.
+inline rig::RigModel with_found(const rig::RigModel& start, const diagnose::Diagnosis& d) {
+  if (d.chain.empty()) return with_found(start, d.ranking.front());
+  const diagnose::ChainStep& last = d.chain.back();
+  return with_found(start, last.body, last.body_credible, last.rig_block, "chain-" + last.effect);
 }
 
 }  // namespace rigflex::test

@@ -1,0 +1,110 @@
+#include "diagnose/effect_chain.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace rigflex::diagnose {
+
+EffectGroup::EffectGroup(std::vector<std::shared_ptr<const rig::Effect>> members) : members_(std::move(members)) {
+  if (members_.empty()) throw std::invalid_argument("an effect group needs at least one effect");
+  for (const auto& m : members_) name_ += (name_.empty() ? "" : "+") + std::string(m->name());
+}
+
+void EffectGroup::validate(int rods) const {
+  for (const auto& m : members_) m->validate(rods);
+}
+
+void EffectGroup::build(rig::RigAssembly& a) const {
+  for (const auto& m : members_) m->build(a);
+}
+
+void EffectGroup::add_loads(const rig::Kinematics& k, rig::Loads& l) const {
+  for (const auto& m : members_) m->add_loads(k, l);
+}
+
+void EffectGroup::measure(rig::SensorSample& s) const {
+  for (const auto& m : members_) m->measure(s);
+}
+
+void EffectGroup::unmeasure(rig::SensorSample& s) const {
+  // The inverse of a chain of measurements: the last one undone first.
+  for (auto m = members_.rbegin(); m != members_.rend(); ++m) (*m)->unmeasure(s);
+}
+
+bool EffectGroup::dissipative() const {
+  return std::any_of(members_.begin(), members_.end(), [](const auto& m) { return m->dissipative(); });
+}
+
+namespace {
+
+// The members in order, each with the size of its segment of theta.
+std::vector<const EffectCandidate*> members_of(const std::vector<AcceptedEffect>& accepted,
+                                               const EffectCandidate* next) {
+  std::vector<const EffectCandidate*> out;
+  for (const auto& a : accepted) out.push_back(a.candidate);
+  if (next) out.push_back(next);
+  return out;
+}
+
+}  // namespace
+
+EffectCandidate chained_candidate(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next) {
+  const std::vector<const EffectCandidate*> members = members_of(accepted, next);
+  if (members.empty()) throw std::invalid_argument("chained_candidate: no effect");
+  EffectCandidate c;
+  c.effect = members.back()->effect;
+  c.advice = members.back()->advice;
+  c.evidence = members.back()->evidence;
+  c.stand_in = members.back()->stand_in;
+  for (size_t m = 0; m < members.size(); ++m) {
+    for (auto p : members[m]->parameters) {
+      if (m < accepted.size()) p.name = members[m]->effect + "." + p.name;
+      c.parameters.push_back(std::move(p));
+    }
+  }
+  // Each member's segment of theta, by position.
+  auto segments = [members](const Eigen::VectorXd& theta, auto&& each) {
+    Eigen::Index at = 0;
+    for (const EffectCandidate* m : members) {
+      const auto n = static_cast<Eigen::Index>(m->parameters.size());
+      each(*m, theta.segment(at, n));
+      at += n;
+    }
+  };
+  c.make = [segments](const Eigen::VectorXd& theta) -> std::shared_ptr<const rig::Effect> {
+    std::vector<std::shared_ptr<const rig::Effect>> made;
+    segments(theta, [&](const EffectCandidate& m, const Eigen::VectorXd& x) {
+      if (auto e = m.make(x)) made.push_back(std::move(e));
+    });
+    if (made.empty()) return nullptr;
+    if (made.size() == 1) return made.front();
+    return std::make_shared<EffectGroup>(std::move(made));
+  };
+  c.rig_block = [segments](const Eigen::VectorXd& theta) {
+    std::string block;
+    segments(theta, [&](const EffectCandidate& m, const Eigen::VectorXd& x) {
+      if (m.make(x)) block += m.rig_block(x);
+    });
+    return block;
+  };
+  return c;
+}
+
+Eigen::VectorXd chained_values(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next) {
+  Eigen::Index n = next ? static_cast<Eigen::Index>(next->parameters.size()) : 0;
+  for (const auto& a : accepted) n += a.values.size();
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
+  Eigen::Index at = 0;
+  for (const auto& a : accepted) {
+    if (a.values.size() != static_cast<Eigen::Index>(a.candidate->parameters.size())) {
+      throw std::invalid_argument("chained_values: " + a.candidate->effect + " has " +
+                                  std::to_string(a.candidate->parameters.size()) + " parameters, not " +
+                                  std::to_string(a.values.size()));
+    }
+    v.segment(at, a.values.size()) = a.values;
+    at += a.values.size();
+  }
+  return v;
+}
+
+}  // namespace rigflex::diagnose
