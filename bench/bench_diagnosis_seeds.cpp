@@ -10,8 +10,9 @@
 // nominal), diagnose with the whole catalogue, then what it found added:
 // the chain's effects as its last step refitted them (the first-ranked
 // effect's where none is significant) and the body's fitted offsets. One row per case:
-//   named    seeds whose missing effect is the hidden one (controls: none
-//            named; two effects: both, one after the other, in the chain)
+//   named    seeds whose missing effect is the hidden one and nothing else
+//            (controls: none named; two effects: both, one after the
+//            other, in the chain)
 //   fall     worst force (angle, where the effect shows more there) NRMSE
 //            before / after adding what diagnose found (target >= 5)
 //   zG fit   worst |fitted CoG height - truth|, mm (target <= 2)
@@ -113,7 +114,7 @@ void run_case(const std::string& name, const Options& o, Row& row) {
       for (const auto& st : d.chain) found += st.effect == "rod_length_error" || st.effect == "load_cell_gain";
       ok = found == 2 && d.chain.size() == 2;
     } else {
-      ok = d.missing_effect && *d.missing_effect == name;
+      ok = d.missing_effect && *d.missing_effect == name && d.chain.size() == 1;
     }
     row.named += ok;
     if (!ok) {
