@@ -352,8 +352,8 @@ void discriminate_against_first(Diagnosis& d, const std::map<std::string, FitPoi
   }
 }
 
-// The chain's first step: the missing effect as the ranking scored it.
-ChainStep first_step(const EffectFit& e, const Diagnosis& d) {
+// A step of the chain: the effect it accepted, as its ranking scored it.
+ChainStep chain_step(const EffectFit& e, const Diagnosis& d) {
   ChainStep st;
   st.effect = e.effect;
   st.residual = e.residual;
@@ -372,7 +372,7 @@ ChainStep first_step(const EffectFit& e, const Diagnosis& d) {
 // from one shared linearization per step (no continuation or staged fits:
 // the accepted effects already carry the model near the data).
 std::vector<EffectFit> test_on_top(Fitter& fit, const std::vector<EffectCandidate>& candidates,
-                                   const std::vector<AcceptedEffect>& accepted, const FitPoint& point,
+                                   const std::vector<const EffectCandidate*>& accepted, const FitPoint& point,
                                    const Baseline& b, const DiagnosisOptions& options, Diagnosis& d,
                                    std::map<std::string, FitPoint>& points) {
   const int nb = fit.body_size();
@@ -382,13 +382,11 @@ std::vector<EffectFit> test_on_top(Fitter& fit, const std::vector<EffectCandidat
   const auto Js = fit.state_jacobians(m, point.states, point.r);
   const auto Jheld = fit.parameter_jacobians(&held, point.theta, point.states, point.r);
   const Reference ref{point.data, b.dof - held_parameters, held_parameters};
+  std::string with;
+  for (const auto* a : accepted) with += (with.empty() ? "" : ", ") + a->effect;
   std::vector<EffectFit> ranking;
   for (const EffectCandidate& next : candidates) {
-    const bool taken = std::any_of(accepted.begin(), accepted.end(),
-                                   [&](const AcceptedEffect& a) { return a.candidate->effect == next.effect; });
-    if (taken) continue;
-    std::string with;
-    for (const auto& a : accepted) with += (with.empty() ? "" : ", ") + a.candidate->effect;
+    if (std::find(accepted.begin(), accepted.end(), &next) != accepted.end()) continue;
     progress(options, "the chain, step " + std::to_string(d.chain.size() + 1) + ": fitting " + next.effect +
                           " with " + with);
     const EffectCandidate c = chained_candidate(accepted, &next);
@@ -421,22 +419,22 @@ void follow_chain(Fitter& fit, const std::vector<EffectCandidate>& candidates, c
                   const std::map<std::string, FitPoint>& points, const DiagnosisOptions& options, Diagnosis& d) {
   const EffectFit* missing = first_significant(d.ranking);
   if (!missing) return;
-  d.chain.push_back(first_step(*missing, d));
+  d.chain.push_back(chain_step(*missing, d));
   auto candidate = [&](const std::string& name) {
     return &*std::find_if(candidates.begin(), candidates.end(),
                           [&](const EffectCandidate& c) { return c.effect == name; });
   };
-  const int nb = fit.body_size();
+  // The accepted effects' values are the tail of the last step's theta (after the body's).
   FitPoint point = points.at(missing->effect);
-  std::vector<AcceptedEffect> accepted{{candidate(missing->effect), point.theta.tail(point.theta.size() - nb)}};
+  std::vector<const EffectCandidate*> accepted{candidate(missing->effect)};
   while (static_cast<int>(d.chain.size()) < options.max_effects &&
          point.data > (1.0 + options.noise_excess) * d.samples && accepted.size() < candidates.size()) {
-    if (accepted.back().candidate->stand_in) {
+    if (accepted.back()->stand_in) {
       char note[400];
       std::snprintf(note, sizeof note,
                     "the chain stops at %s: its fit is a stand-in and stays at %.3g x the noise, a misfit that other "
                     "effects fitted on top of it would absorb; add its proper model, then run diagnose again",
-                    accepted.back().candidate->effect.c_str(), point.data / d.samples);
+                    accepted.back()->effect.c_str(), point.data / d.samples);
       d.chain_note = note;
       break;
     }
@@ -447,16 +445,9 @@ void follow_chain(Fitter& fit, const std::vector<EffectCandidate>& candidates, c
       d.after_chain = std::move(ranking);
       break;
     }
-    ChainStep st = first_step(*next, d);
+    ChainStep st = chain_step(*next, d);
     point = step_points.at(next->effect);
-    const EffectCandidate* c = candidate(next->effect);
-    accepted.push_back({c, point.theta.tail(static_cast<Eigen::Index>(c->parameters.size()))});
-    // The earlier effects' values as refitted with this one.
-    Eigen::Index at = nb;
-    for (auto& a : accepted) {
-      a.values = point.theta.segment(at, a.values.size());
-      at += a.values.size();
-    }
+    accepted.push_back(candidate(next->effect));
     st.ranking = std::move(ranking);
     d.chain.push_back(std::move(st));
   }

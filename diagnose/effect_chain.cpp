@@ -35,21 +35,9 @@ bool EffectGroup::dissipative() const {
   return std::any_of(members_.begin(), members_.end(), [](const auto& m) { return m->dissipative(); });
 }
 
-namespace {
-
-// The members in order, each with the size of its segment of theta.
-std::vector<const EffectCandidate*> members_of(const std::vector<AcceptedEffect>& accepted,
-                                               const EffectCandidate* next) {
-  std::vector<const EffectCandidate*> out;
-  for (const auto& a : accepted) out.push_back(a.candidate);
-  if (next) out.push_back(next);
-  return out;
-}
-
-}  // namespace
-
-EffectCandidate chained_candidate(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next) {
-  const std::vector<const EffectCandidate*> members = members_of(accepted, next);
+EffectCandidate chained_candidate(const std::vector<const EffectCandidate*>& accepted, const EffectCandidate* next) {
+  std::vector<const EffectCandidate*> members = accepted;
+  if (next) members.push_back(next);
   if (members.empty()) throw std::invalid_argument("chained_candidate: no effect");
   EffectCandidate c;
   c.effect = members.back()->effect;
@@ -88,23 +76,6 @@ EffectCandidate chained_candidate(const std::vector<AcceptedEffect>& accepted, c
     return block;
   };
   return c;
-}
-
-Eigen::VectorXd chained_values(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next) {
-  Eigen::Index n = next ? static_cast<Eigen::Index>(next->parameters.size()) : 0;
-  for (const auto& a : accepted) n += a.values.size();
-  Eigen::VectorXd v = Eigen::VectorXd::Zero(n);
-  Eigen::Index at = 0;
-  for (const auto& a : accepted) {
-    if (a.values.size() != static_cast<Eigen::Index>(a.candidate->parameters.size())) {
-      throw std::invalid_argument("chained_values: " + a.candidate->effect + " has " +
-                                  std::to_string(a.candidate->parameters.size()) + " parameters, not " +
-                                  std::to_string(a.values.size()));
-    }
-    v.segment(at, a.values.size()) = a.values;
-    at += a.values.size();
-  }
-  return v;
 }
 
 }  // namespace rigflex::diagnose

@@ -30,19 +30,11 @@ class EffectGroup : public rig::Effect {
   std::string name_;
 };
 
-struct AcceptedEffect {
-  const EffectCandidate* candidate = nullptr;
-  Eigen::VectorXd values;  // its parameters as last fitted
-};
-
 // A candidate whose parameters are every accepted effect's (in order, named
 // "<effect>.<parameter>") and then `next`'s (nullptr: the accepted ones
 // alone). It is named after `next` (the last accepted one without it); its
 // make() builds all of them (nullptr when none amounts to an effect), its
-// rig_block() writes a block per effect.
-EffectCandidate chained_candidate(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next);
-
-// The chained candidate's parameters at the accepted values, `next`'s at 0.
-Eigen::VectorXd chained_values(const std::vector<AcceptedEffect>& accepted, const EffectCandidate* next);
+// rig_block() writes a block per effect. The candidates must outlive it.
+EffectCandidate chained_candidate(const std::vector<const EffectCandidate*>& accepted, const EffectCandidate* next);
 
 }  // namespace rigflex::diagnose

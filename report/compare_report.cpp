@@ -399,6 +399,12 @@ void missing_effect_section(HtmlReport& r, const diagnose::Diagnosis& d) {
                 keep_indentation(e->rig_block));
 }
 
+std::string ranked_names(const std::vector<diagnose::EffectFit>& fits) {
+  std::vector<std::string> names;
+  for (const auto& e : fits) names.push_back(ranked_name(e));
+  return joined(names, "");
+}
+
 // The effects accepted one after another, the residual after each: the
 // error falling step by step, and the block that adds them all.
 void chain_section(HtmlReport& r, const diagnose::Diagnosis& d) {
@@ -408,17 +414,12 @@ void chain_section(HtmlReport& r, const diagnose::Diagnosis& d) {
   t.rows.push_back({"0", "(the model as it is)", fmt("%.3g", d.noise_ratio), "", ""});
   for (size_t k = 0; k < d.chain.size(); ++k) {
     const diagnose::ChainStep& st = d.chain[k];
-    std::vector<std::string> tested;
-    for (const auto& e : st.ranking) tested.push_back(ranked_name(e));
     t.rows.push_back({std::to_string(k + 1), st.effect, fmt("%.3g", st.noise_ratio), fmt("%.3g", st.p_value),
-                      k == 0 ? "the ranking above" : joined(tested, "")});
+                      k == 0 ? "the ranking above" : ranked_names(st.ranking)});
   }
   r.table(t, "Chain (each step refits every effect before it, the body and the swing states)");
-  if (!d.after_chain.empty()) {
-    std::vector<std::string> tested;
-    for (const auto& e : d.after_chain) tested.push_back(ranked_name(e));
-    r.paragraph("Tested on top of the whole chain, none significant: " + joined(tested, "") + ".");
-  }
+  if (!d.after_chain.empty())
+    r.paragraph("Tested on top of the whole chain, none significant: " + ranked_names(d.after_chain) + ".");
   if (!d.chain_note.empty()) r.paragraph("Note: " + d.chain_note + ".");
   if (!d.chain.empty() && !d.chain.back().rig_block.empty())
     r.paragraph("Every effect of the chain as its last step fitted them, for the rig file under `effects:` "
