@@ -7,6 +7,7 @@
 // `rigflex compare --effects` or to paste into the rig file; where an effect
 // is missing, DIR/effects/found.yaml with every effect of the chain (the
 // missing one, then each further one found with it) refitted together.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -70,11 +71,14 @@ void print_body(const diagnose::Diagnosis& d) {
                 verdict_model(d).c_str(), misfit);
     return;
   }
-  std::printf("body fitted with %s (offset from the rig file, its std, the stated std):\n", verdict_model(d).c_str());
+  const bool rods = std::any_of(d.body.begin(), d.body.end(), [](const auto& p) { return p.name == "rods.stiffness"; });
+  std::printf("body%s fitted with %s (offset from the rig file, its std, the stated std):\n",
+              rods ? " and rods' stiffness" : "", verdict_model(d).c_str());
+  const int width = rods ? 14 : 6;
   for (const auto& p : d.body) {
     const double k = p.unit == "m" ? 1e3 : 1.0;
     const char* unit = p.unit == "m" ? "mm" : p.unit.c_str();
-    std::printf("  %-6s %+10.4g +- %-9.3g %s (stated %.3g)%s\n", p.name.c_str(), k * p.value, k * p.std, unit,
+    std::printf("  %-*s %+10.4g +- %-9.3g %s (stated %.3g)%s\n", width, p.name.c_str(), k * p.value, k * p.std, unit,
                 k * p.prior_std, p.off ? "  OFF" : "");
   }
 }

@@ -92,8 +92,7 @@ struct Row {
 
 void run_case(const std::string& name, const Options& o, Row& row) {
   const rig::RigModel nominal = test::noisy_trifilar();
-  rig::RigModel truth = nominal;
-  for (auto& e : test::case_effects(name, nominal)) truth.effects.push_back(e);
+  const rig::RigModel truth = test::case_truth(name, nominal);
   const bool control = test::control_case(name);
   for (int k = 0; k < o.seeds; ++k) {
     const std::uint64_t seed = o.test_seed ? test::acceptance_seed(name) : o.first + static_cast<std::uint64_t>(k);

@@ -1,32 +1,38 @@
 #include "diagnose/body_parameters.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace rigflex::diagnose {
 
 namespace {
-const std::array<const char*, 9> kNames{"cog_x", "cog_y", "cog_z", "Jxx", "Jyy", "Jzz", "Jxy", "Jxz", "Jyz"};
-}
+const std::array<const char*, 10> kNames{"cog_x", "cog_y", "cog_z", "Jxx", "Jyy",
+                                         "Jzz",   "Jxy",   "Jxz",   "Jyz", "rods.stiffness"};
+constexpr int kRodStiffness = 9;
+}  // namespace
 
 BodyParameters body_parameters(const rig::RigModel& model) {
   const auto Jstd = model.body_uncertainty.inertia_std(model.body);
-  std::array<double, 9> sigma{};
+  std::array<double, 10> sigma{};
   for (int k = 0; k < 3; ++k) sigma[k] = model.body_uncertainty.cog(k);
   for (int k = 0; k < 6; ++k) sigma[3 + k] = Jstd[k];
+  if (!model.rods.stiffness.empty()) sigma[kRodStiffness] = 100.0 * model.rods.stiffness_uncertainty;  // %
   // Probes: small against the prior (the responses are smooth in the mass
   // properties) yet far above the simulator's round-off: 0.2 mm of CoG and
   // 0.2 % of the mean principal moment move the swing-band forces by
-  // several times their noise on the test rigs.
+  // several times their noise on the test rigs. The rods' stiffness moves
+  // the swing band only through the static stretch (the body hangs lower)
+  // and the rods' bounce modes far above it: a 1 % probe.
   const double moment = model.body.inertia.trace() / 3.0;
   BodyParameters p;
   std::vector<double> s;
-  for (int k = 0; k < 9; ++k) {
+  for (int k = 0; k < 10; ++k) {
     if (!(sigma[k] > 0)) continue;
     p.components.push_back(k);
     rig::FitParameter f;
     f.name = kNames[k];
-    f.unit = k < 3 ? "m" : "kg m^2";
-    f.probe = k < 3 ? 2e-4 : 2e-3 * moment;
+    f.unit = k < 3 ? "m" : k < kRodStiffness ? "kg m^2" : "%";
+    f.probe = k < 3 ? 2e-4 : k < kRodStiffness ? 2e-3 * moment : 1.0;
     f.low = -3 * sigma[k];
     f.high = 3 * sigma[k];
     p.parameters.push_back(f);
@@ -43,11 +49,25 @@ fe::MassProperties body_with(const fe::MassProperties& body, const BodyParameter
     const int k = p.components[i];
     if (k < 3) {
       out.cog(k) += delta(i);
-    } else {
+    } else if (k < kRodStiffness) {
       J[k - 3] += delta(i);
     }
   }
   out.inertia = rig::inertia_tensor(J);
+  return out;
+}
+
+rig::RigModel model_with(const rig::RigModel& model, const BodyParameters& p, const Eigen::VectorXd& delta) {
+  rig::RigModel out = model;
+  out.body = body_with(model.body, p, delta);
+  for (int i = 0; i < p.size(); ++i) {
+    if (p.components[i] != kRodStiffness) continue;
+    // A fit far past the prior may ask for rods softer than nothing: the
+    // factor is kept positive (a rig can then still be simulated, and the
+    // prior and the data push back).
+    const double factor = std::max(1.0 + delta(i) / 100.0, 1e-3);
+    for (double& k : out.rods.stiffness) k *= factor;
+  }
   return out;
 }
 

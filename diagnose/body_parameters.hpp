@@ -8,7 +8,10 @@
 // physics. So every fit - the baseline and each candidate - refits them,
 // each offset from the rig file's value with the user's stated standard
 // deviation (rig::BodyUncertainty) as a Gaussian prior: a maximum a
-// posteriori fit in which the data decide wherever they can.
+// posteriori fit in which the data decide wherever they can. Where the rig
+// file states how well it knows the rods' stiffness (rods.uncertainty), a
+// common factor on it is refitted the same way: a parameter already in the
+// model, suspected like the body.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -19,8 +22,9 @@
 namespace rigflex::diagnose {
 
 struct BodyParameters {
-  // Of the nine (cog x y z, then Jxx Jyy Jzz Jxy Jxz Jyz), those with a
-  // standard deviation above zero, in that order.
+  // Of the ten (cog x y z, then Jxx Jyy Jzz Jxy Jxz Jyz, then the rods'
+  // stiffness, an offset in % of the rig file's), those with a standard
+  // deviation above zero, in that order.
   std::vector<int> components;
   std::vector<rig::FitParameter> parameters;  // name, unit, probe, plausible range (+-3 sigma)
   Eigen::VectorXd sigma;                      // prior standard deviations
@@ -31,5 +35,7 @@ BodyParameters body_parameters(const rig::RigModel& model);
 
 // The body with the offsets `delta` (one per fitted component) added.
 fe::MassProperties body_with(const fe::MassProperties& body, const BodyParameters& p, const Eigen::VectorXd& delta);
+// The model with the offsets `delta` applied: the body's and the rods' stiffness.
+rig::RigModel model_with(const rig::RigModel& model, const BodyParameters& p, const Eigen::VectorXd& delta);
 
 }  // namespace rigflex::diagnose

@@ -127,8 +127,7 @@ std::vector<Eigen::MatrixXd> Fitter::parameter_jacobians(const EffectCandidate* 
 }
 
 rig::RigModel Fitter::with_parameters(const EffectCandidate* c, const Eigen::VectorXd& theta) const {
-  rig::RigModel m = model_;
-  if (body_size() > 0) m.body = body_with(m.body, body_, theta.head(body_size()));
+  rig::RigModel m = body_size() > 0 ? model_with(model_, body_, theta.head(body_size())) : model_;
   if (c) {
     if (auto e = c->make(theta.tail(theta.size() - body_size()))) m.effects.push_back(std::move(e));
   }

@@ -97,7 +97,7 @@ struct Reader {
 
   // `geometry`: the rods' lengths, for EA/L.
   rig::RodProperties rod_properties(const YAML::Node& n, const rig::RigGeometry& geometry) const {
-    ctx.expect_map(n, "rods", {"stiffness", "youngs_modulus", "area", "damping"});
+    ctx.expect_map(n, "rods", {"stiffness", "youngs_modulus", "area", "damping", "uncertainty"});
     rig::RodProperties p;
     const bool by_material = n["youngs_modulus"] || n["area"];
     if (n["stiffness"] && by_material) {
@@ -113,6 +113,12 @@ struct Reader {
       }
     }
     if (n["damping"]) p.damping = per_rod(n, "damping");
+    if (const YAML::Node u = n["uncertainty"]) {
+      within("rods.uncertainty", [&] {
+        ctx.expect_map(u, "uncertainty", {"stiffness"});
+        if (u["stiffness"]) p.stiffness_uncertainty = ctx.number(u, "stiffness");
+      });
+    }
     return p;
   }
 

@@ -106,6 +106,11 @@ void RigModel::validate() const {
   };
   per_rod(rods.stiffness, "rods.stiffness", false);
   per_rod(rods.damping, "rods.damping", true);
+  require(std::isfinite(rods.stiffness_uncertainty) && rods.stiffness_uncertainty >= 0 &&
+              rods.stiffness_uncertainty < 1,
+          "rods.uncertainty.stiffness", "a relative standard deviation: must lie in [0, 1)");
+  require(rods.stiffness_uncertainty == 0 || !rods.stiffness.empty(), "rods.uncertainty.stiffness",
+          "needs the rods' stiffness (rods.stiffness, or youngs_modulus and area): rigid rods have none to refit");
   require(sensors.sample_rate_hz > 0, "sensors.sample_rate", "must be positive");
   require(sensors.force_noise_n >= 0 && sensors.angle_noise_rad >= 0 && sensors.force_resolution_n >= 0,
           "sensors", "noise and resolution must be >= 0");

@@ -85,6 +85,12 @@ struct SimulationOptions {
 struct RodProperties {
   std::vector<double> stiffness;  // N/m per rod; empty: rigid (rig/rig_system.hpp)
   std::vector<double> damping;    // N s/m per rod, on the rate of stretch; empty: none
+  // How well the user knows the stiffness (rods.uncertainty.stiffness): one
+  // relative standard deviation for a factor common to every rod (the
+  // joints' and load cells' share of the axial compliance is rarely
+  // known better than the rods' own). diagnose refits that factor with it
+  // as the prior (diagnose/body_parameters.hpp); 0: held as given.
+  double stiffness_uncertainty = 0.0;
 };
 
 class Effect;

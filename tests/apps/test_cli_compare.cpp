@@ -92,6 +92,38 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
                 " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
 }
 
+// The rig file states the rods' stiffness and how well it is known; the
+// rods measured are twice as compliant: diagnose names no missing effect,
+// reports the stiffness off, prints it with the body, and writes it to
+// diagnosis.json.
+TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
+  const fs::path dir = fresh_dir("rods_off");
+  fs::create_directories(dir);
+  std::ofstream(dir / "truth.yaml") << kRig << "rods: {stiffness: 2.5e5}\n";
+  std::ofstream(dir / "rig.yaml") << kRig << "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n";
+  ASSERT_EQ(run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
+                (dir / "data").string() + " --quiet").code, 0);
+  const CliRun r = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
+                       " --only rod_compliance --out " + (dir / "diag").string() + " --quiet");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("model parameter off: rods.stiffness"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("body and rods' stiffness fitted"), std::string::npos) << r.out;
+  const auto j = read_json(dir / "diag" / "diagnosis.json");
+  EXPECT_TRUE(j["missing_effect"].is_null()) << j["summary"];
+  EXPECT_EQ(j["model_parameters_off"], nlohmann::json::array({"rods.stiffness"}));
+  EXPECT_EQ(j["body"]["rods.stiffness"]["unit"], "%");
+  EXPECT_NEAR(j["body"]["rods.stiffness"]["offset"].get<double>(), -50.0, 1.0);
+  // Rigid rods have no stiffness to be unsure of: file, line and key.
+  std::ofstream(dir / "bad.yaml") << kRig << "rods: {damping: 10, uncertainty: {stiffness: 0.1}}\n";
+  const CliRun bad = run("diagnose " + (dir / "bad.yaml").string() + " " + (dir / "data" / "set1").string() +
+                         " --out " + (dir / "x").string());
+  EXPECT_EQ(bad.code, 2) << bad.out;
+  EXPECT_NE(bad.out.find("bad.yaml:"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("rods.uncertainty.stiffness"), std::string::npos) << bad.out;
+  EXPECT_FALSE(fs::exists(dir / "x"));
+  fs::remove_all(dir);
+}
+
 TEST_F(CliCompare, BadInputIsNamed) {
   // An unknown effect for --only.
   CliRun r = run("diagnose " + rig().string() + " " + data() + " --only gravity_waves --out " + (*dir_ / "x").string());

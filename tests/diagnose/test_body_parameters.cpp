@@ -67,5 +67,32 @@ TEST(BodyParameters, ProductsOfInertiaGoOffTheDiagonalSymmetrically) {
   EXPECT_NEAR(dJ.diagonal().norm(), 0.0, 1e-12);
 }
 
+// Where the rig file states how well it knows the rods' stiffness, one
+// common factor on it is fitted after the body: an offset in %, its prior
+// the stated relative uncertainty; rigid rods have none.
+TEST(BodyParameters, TheRodsStiffnessWhereItsUncertaintyIsStated) {
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3(0.003, 0.0, 0.0);
+  m.body_uncertainty.inertia = std::array<double, 6>{0, 0, 0, 0, 0, 0};
+  m.rods.stiffness = {2e7, 3e7, 4e7};
+  EXPECT_EQ(diagnose::body_parameters(m).components, (std::vector<int>{0}));  // no uncertainty stated: held
+  m.rods.stiffness_uncertainty = 0.15;
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  ASSERT_EQ(p.components, (std::vector<int>{0, 9}));
+  EXPECT_EQ(p.parameters[1].name, "rods.stiffness");
+  EXPECT_EQ(p.parameters[1].unit, "%");
+  EXPECT_DOUBLE_EQ(p.sigma(1), 15.0);
+  EXPECT_LT(p.parameters[1].probe, p.sigma(1));
+  // The offset scales every rod's stiffness by one factor and leaves the body's mass properties alone.
+  const rig::RigModel out = diagnose::model_with(m, p, Eigen::Vector2d(0.001, -20.0));
+  ASSERT_EQ(out.rods.stiffness.size(), 3u);
+  for (size_t i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(out.rods.stiffness[i], 0.8 * m.rods.stiffness[i]);
+  EXPECT_DOUBLE_EQ(out.body.cog.x(), m.body.cog.x() + 0.001);
+  EXPECT_EQ(out.body.inertia, m.body.inertia);
+  // Rigid rods have no stiffness to refit.
+  m.rods.stiffness.clear();
+  EXPECT_EQ(diagnose::body_parameters(m).components, (std::vector<int>{0}));
+}
+
 }  // namespace
 }  // namespace rigflex

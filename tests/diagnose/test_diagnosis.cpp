@@ -3,6 +3,9 @@
 // in tests/acceptance/test_diagnosis_acceptance.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iostream>
+
 #include <Eigen/LU>
 
 #include "diagnose/diagnosis.hpp"
@@ -83,6 +86,19 @@ TEST(EffectCandidates, EveryEffectBuildsAtItsProbe) {
   EXPECT_EQ(cands[2].make(Eigen::VectorXd::Zero(1)), nullptr);
 }
 
+// diagnose of `start` on two records of 8 s simulated from `truth`, the candidates limited to `effects`.
+diagnose::Diagnosis diagnose_two_short_records(const rig::RigModel& start, const rig::RigModel& truth,
+                                               std::uint64_t seed, std::vector<std::string> effects) {
+  rig::MeasurementOptions mo;
+  mo.histories = 2;
+  mo.duration_s = 8.0;
+  mo.seed = seed;
+  const auto data = rig::simulate_measurement(rig::RigSystem(truth), mo).front();
+  diagnose::DiagnosisOptions o;
+  o.effects = std::move(effects);
+  return diagnose::diagnose(start, {&data[0], &data[1]}, {"a", "b"}, o);
+}
+
 // A hidden load-cell calibration on two short records: found, ranked above
 // a rod length error, its gains within 3 std of the truth.
 TEST(Diagnosis, FindsALoadCellCalibration) {
@@ -90,14 +106,7 @@ TEST(Diagnosis, FindsALoadCellCalibration) {
   rig::RigModel truth = start;
   truth.effects.push_back(std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.0},
                                                               std::vector<double>{5.0, 0.0, -5.0}));
-  rig::MeasurementOptions mo;
-  mo.histories = 2;
-  mo.duration_s = 8.0;
-  mo.seed = 5;
-  const auto data = rig::simulate_measurement(rig::RigSystem(truth), mo).front();
-  diagnose::DiagnosisOptions o;
-  o.effects = {"load_cell_gain", "rod_length_error"};
-  const diagnose::Diagnosis d = diagnose::diagnose(start, {&data[0], &data[1]}, {"a", "b"}, o);
+  const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 5, {"load_cell_gain", "rod_length_error"});
   ASSERT_EQ(d.ranking.size(), 2u);
   EXPECT_EQ(d.ranking[0].effect, "load_cell_gain");
   ASSERT_TRUE(d.missing_effect);
@@ -108,6 +117,30 @@ TEST(Diagnosis, FindsALoadCellCalibration) {
     const auto& p = d.ranking[0].parameters[static_cast<size_t>(k)];
     EXPECT_LE(std::abs(p.value - gains[k]), std::max(3 * p.std, 2e-4)) << p.name << " " << p.value << " +- " << p.std;
   }
+}
+
+// The rods' stiffness as the rig file has it, with the uncertainty it
+// states (10 %), while the rods are twice as compliant: the stiffness is
+// refitted with the body, lands on the truth, and is reported as a model
+// parameter off - not a missing effect, since the model already has it.
+TEST(Diagnosis, ReportsTheRodsStiffnessOffWhereItsUncertaintyIsStated) {
+  rig::RigModel start = trifilar();
+  start.rods.stiffness = {5e5, 5e5, 5e5};
+  start.rods.stiffness_uncertainty = 0.10;
+  rig::RigModel truth = start;
+  truth.rods.stiffness = {2.5e5, 2.5e5, 2.5e5};
+  const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 9, {"rod_compliance", "rod_length_error"});
+  std::cout << d.summary << "\n";
+  EXPECT_FALSE(d.missing_effect.has_value()) << d.summary;
+  const auto off = std::find_if(d.parameters_off.begin(), d.parameters_off.end(),
+                                [](const auto& p) { return p.name == "rods.stiffness"; });
+  ASSERT_NE(off, d.parameters_off.end()) << d.summary;
+  EXPECT_EQ(off->unit, "%");
+  EXPECT_EQ(off->prior_std, 10.0);
+  // -50 %: within 3 of the fit's std, or 1 % of the stiffness where that is tighter than the fit resolves.
+  EXPECT_LE(std::abs(off->value + 50.0), std::max(3 * off->std, 1.0)) << off->value << " +- " << off->std;
+  EXPECT_NE(d.summary.find("model parameter off"), std::string::npos) << d.summary;
+  EXPECT_NE(d.summary.find("rods.stiffness"), std::string::npos) << d.summary;
 }
 
 TEST(Diagnosis, OptionsAreChecked) {

@@ -289,6 +289,23 @@ TEST(RigReader, RodsDampingMustNotBeNegative) {
   expect_error(with_rods("rods:\n  damping: -1\n"), "  damping", "rods.damping", ">= 0");
 }
 
+TEST(RigReader, ReadsHowWellTheRodsStiffnessIsKnown) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", with_rods("rods:\n  stiffness: 2.0e7\n  uncertainty: {stiffness: 0.15}\n"));
+  EXPECT_EQ(io::read_rig(dir.path() / "rig.yaml").rods.stiffness_uncertainty, 0.15);
+  test::write_text(dir.path() / "rig.yaml", with_rods("rods:\n  stiffness: 2.0e7\n"));
+  EXPECT_EQ(io::read_rig(dir.path() / "rig.yaml").rods.stiffness_uncertainty, 0.0);  // held as given
+}
+
+TEST(RigReader, RodsStiffnessUncertaintyNeedsAStiffnessAndARelativeValue) {
+  expect_error(with_rods("rods:\n  damping: 10\n  uncertainty: {stiffness: 0.1}\n"), "  uncertainty",
+               "rods.uncertainty.stiffness", "rigid rods");
+  expect_error(with_rods("rods:\n  stiffness: 2.0e7\n  uncertainty: {stiffness: 1.5}\n"), "  uncertainty",
+               "rods.uncertainty.stiffness", "[0, 1)");
+  expect_error(with_rods("rods:\n  stiffness: 2.0e7\n  uncertainty: {damping: 0.1}\n"), "  uncertainty",
+               "rods.uncertainty.damping", "unknown key");
+}
+
 TEST(RigReader, UnknownKeyInTheRodsBlock) {
   expect_error(with_rods("rods:\n  colour: 3\n"), "  colour", "rods.colour", "unknown key");
 }

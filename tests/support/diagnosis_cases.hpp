@@ -102,6 +102,18 @@ inline std::vector<std::shared_ptr<const rig::Effect>> case_effects(const std::s
   return {e};
 }
 
+// The rig the records of a case come from: `nominal` with the case's
+// effects. The clean control's records are simulated by CVODE's BDF, not
+// by the generalized-alpha integrator every model prediction uses, as
+// independently generated data would be: a model error of the integrator
+// must not look like a missing effect.
+inline rig::RigModel case_truth(const std::string& name, const rig::RigModel& nominal) {
+  rig::RigModel truth = nominal;
+  for (auto& e : case_effects(name, nominal)) truth.effects.push_back(e);
+  if (name == "none") truth.simulation.method = rig::IntegrationMethod::bdf;
+  return truth;
+}
+
 // The seed tests/acceptance/test_uncertain_body.cpp runs a case with.
 inline std::uint64_t acceptance_seed(const std::string& name) { return 700 + std::hash<std::string>{}(name) % 100; }
 
@@ -145,7 +157,7 @@ inline rig::RigModel users_model(const rig::RigModel& nominal, const std::vector
 }
 
 // `start` with what diagnose found added as a user adds it: the body's
-// fitted offsets where they are reported (`body_credible`), and the
+// (and a refitted rod stiffness's) offsets where they are reported (`body_credible`), and the
 // effects' rig block written as an effects file and read back through the
 // reader.
 inline rig::RigModel with_found(const rig::RigModel& start, const std::vector<diagnose::FittedParameter>& body,
@@ -155,7 +167,7 @@ inline rig::RigModel with_found(const rig::RigModel& start, const std::vector<di
     const diagnose::BodyParameters bp = diagnose::body_parameters(start);
     Eigen::VectorXd delta(bp.size());
     for (int k = 0; k < bp.size(); ++k) delta(k) = body[static_cast<size_t>(k)].value;
-    m.body = diagnose::body_with(start.body, bp, delta);
+    m = diagnose::model_with(start, bp, delta);
   }
   if (!rig_block.empty()) {
     const std::filesystem::path file = std::filesystem::temp_directory_path() / ("rigflex-found-" + label + ".yaml");
