@@ -56,22 +56,14 @@ struct Options {
   int subspace = 0;  // 0: the solver's automatic basis
 };
 
-std::vector<std::string> split(const std::string& list) {
-  std::vector<std::string> out;
-  std::istringstream in(list);
-  std::string item;
-  while (std::getline(in, item, ',')) out.push_back(item);
-  return out;
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--models") o.models = split(bench::option_value(argc, argv, i));
+    if (a == "--models") o.models = bench::split(bench::option_value(argc, argv, i));
     else if (a == "--blocks") {
       o.blocks.clear();
-      for (const std::string& b : split(bench::option_value(argc, argv, i))) o.blocks.push_back(std::stoi(b));
+      for (const std::string& b : bench::split(bench::option_value(argc, argv, i))) o.blocks.push_back(std::stoi(b));
     } else if (a == "--modes") o.modes = std::stoi(bench::option_value(argc, argv, i));
     else if (a == "--repeat") o.repeat = std::stoi(bench::option_value(argc, argv, i));
     else if (a == "--subspace") o.subspace = std::stoi(bench::option_value(argc, argv, i));

@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,13 +48,6 @@ struct Options {
   std::vector<std::string> cases;
 };
 
-std::vector<std::string> split(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  for (std::string x; std::getline(ss, x, ',');) out.push_back(x);
-  return out;
-}
-
 Options parse(int argc, char** argv) {
   Options o;
   for (int i = 1; i < argc; ++i) {
@@ -65,7 +57,7 @@ Options parse(int argc, char** argv) {
     } else if (a == "--first") {
       o.first = std::stoull(bench::option_value(argc, argv, i));
     } else if (a == "--cases") {
-      o.cases = split(bench::option_value(argc, argv, i));
+      o.cases = bench::split(bench::option_value(argc, argv, i));
     } else if (a == "--test-seed") {
       o.test_seed = true;
     } else if (a == "--threads") {

@@ -27,8 +27,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -62,8 +62,7 @@ Options parse(int argc, char** argv) {
       o.histories = std::stoi(value());
     } else if (a == "--resolve") {
       o.resolve.clear();
-      std::stringstream s(value());
-      for (std::string x; std::getline(s, x, ',');) o.resolve.push_back(std::stod(x));
+      for (const std::string& x : bench::split(value())) o.resolve.push_back(std::stod(x));
     } else if (a == "--reference-hz") {
       o.reference_hz = std::stod(value());
     } else if (a == "--repeat") {
@@ -78,7 +77,10 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// The model as the fits predict it - generalized-alpha, whatever simulated
+// the records - resolving modes up to resolve_hz (0: the model's default).
 diagnose::ResponseModel model_resolving(rig::RigModel m, double resolve_hz) {
+  m.simulation.method = rig::IntegrationMethod::generalized_alpha;
   m.simulation.resolve_hz = resolve_hz;
   return diagnose::ResponseModel(m);
 }
@@ -94,9 +96,7 @@ int main(int argc, char** argv) try {
     rig::MeasurementOptions mo;
     mo.histories = o.histories;
     const auto records = rig::simulate_measurement(rig::RigSystem(model), mo).front();
-    rig::RigModel predicting = model;  // the fits' integrator, whatever simulated the records
-    predicting.simulation.method = rig::IntegrationMethod::generalized_alpha;
-    const diagnose::ResponseModel fine = model_resolving(predicting, o.reference_hz);
+    const diagnose::ResponseModel fine = model_resolving(model, o.reference_hz);
     std::vector<diagnose::HistoryComparison> ref;
     std::vector<Eigen::VectorXd> r_ref;
     for (const auto& r : records) {
@@ -114,9 +114,7 @@ int main(int argc, char** argv) try {
       std::snprintf(data, sizeof data, "generalized-alpha");
     }
     for (double hz : o.resolve) {
-      rig::RigModel predicting = model;
-      predicting.simulation.method = rig::IntegrationMethod::generalized_alpha;
-      const diagnose::ResponseModel m = model_resolving(predicting, hz);
+      const diagnose::ResponseModel m = model_resolving(model, hz);
       const double dt = ref.front().target.record.step_s;
       const double step = rig::generalized_alpha_step(m.linearization, 1.0 / dt, m.resolve_hz);
       double sum = 0, count = 0, worst = 0, best = HUGE_VAL;
