@@ -11,9 +11,9 @@
 #include "diagnose/effect_chain.hpp"
 #include "diagnose/fit_discrimination.hpp"
 #include "diagnose/joint_fit.hpp"
+#include "identify/identification_kinematics.hpp"
 #include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
-#include "identify/identification_kinematics.hpp"
 #include "rig/parallel_for.hpp"
 
 namespace rigflex::diagnose {
@@ -22,6 +22,8 @@ void DiagnosisOptions::validate() const {
   compare.validate();
   if (refinements < 0) throw std::invalid_argument("refinements: must be >= 0");
   if (relinearizations < 0) throw std::invalid_argument("relinearizations: must be >= 0");
+  if (!(relinearize_gain >= 0 && relinearize_gain < 1))
+    throw std::invalid_argument("relinearize_gain: must lie in [0, 1)");
   if (!(continuation_threshold >= 0 && continuation_threshold <= continuation_ceiling)) {
     throw std::invalid_argument("continuation_threshold: must lie in [0, continuation_ceiling]");
   }
@@ -83,8 +85,8 @@ void compare_histories(const ResponseModel& base, const std::vector<const rig::R
   progress(options, "fitting the swing states of " + std::to_string(H) + " histories");
   rig::parallel_for(H, options.threads, [&](int j) {
     try {
-      d.baseline[j] = compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "",
-                                      options.compare);
+      d.baseline[j] =
+          compare_history(base, *records[j], j < static_cast<int>(sources.size()) ? sources[j] : "", options.compare);
     } catch (rig::RecordError& e) {
       e.set_history(j);
       throw;
@@ -99,18 +101,24 @@ Baseline fit_baseline(Fitter& fit, const rig::RigModel& model, const ResponseMod
                       const std::vector<const BandTarget*>& targets, const std::vector<SwingState>& states,
                       const DiagnosisOptions& options, Diagnosis& d) {
   const int H = fit.histories();
+  // Every candidate is scored by what it gains over this fit: what the
+  // baseline leaves unconverged a candidate would gain as if it were its
+  // effect. The baseline's two fits are cheap beside the catalogue's, so
+  // they relinearize while a linearization gains more than 1 %.
+  DiagnosisOptions tight = options;
+  tight.relinearize_gain = std::min(options.relinearize_gain, DiagnosisOptions::kBaselineRelinearizeGain);
   Baseline b;
   b.initial_states = states;
   progress(options, "fitting the swing states to the whole records");
   Fitter plain(model, base, targets, BodyParameters{}, options.threads);
   const FitPoint first = evaluate(plain, nullptr, Eigen::VectorXd(), states);
   const std::vector<Eigen::MatrixXd> none(static_cast<size_t>(H));
-  const FitOutcome s = fit_nonlinear(plain, nullptr, first, plain.state_jacobians(base, states, first.r), none, options);
+  const FitOutcome s = fit_nonlinear(plain, nullptr, first, plain.state_jacobians(base, states, first.r), none, tight);
   b.start = evaluate(fit, nullptr, Eigen::VectorXd::Zero(fit.body_size()), s.at.states);
   b.Js = fit.state_jacobians(base, b.start.states, b.start.r);
   progress(options, "fitting the body's mass properties with the swing states");
   b.Jbody = fit.parameter_jacobians(nullptr, b.start.theta, b.start.states, b.start.r);
-  FitOutcome o = fit_nonlinear(fit, nullptr, b.start, b.Js, b.Jbody, options);
+  FitOutcome o = fit_nonlinear(fit, nullptr, b.start, b.Js, b.Jbody, tight);
   b.at = std::move(o.at);
   b.schur_inverse = o.schur_inverse;
   d.residual = b.at.data;
@@ -215,9 +223,8 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
 // (parameters [first, first + specs.size()) of theta): the noise-weighted
 // residual has unit variance per sample at the noise, the band's samples are
 // correlated (1 / independence), and a misfit left over scales it up.
-std::vector<FittedParameter> fitted_values(const std::vector<CandidateParameter>& specs, int first,
-                                           const FitPoint& at, const Eigen::MatrixXd& schur_inverse, int fitted,
-                                           const Diagnosis& d) {
+std::vector<FittedParameter> fitted_values(const std::vector<CandidateParameter>& specs, int first, const FitPoint& at,
+                                           const Eigen::MatrixXd& schur_inverse, int fitted, const Diagnosis& d) {
   const int H = static_cast<int>(d.baseline.size());
   const double variance = std::max(1.0, at.data / std::max(d.samples - 6.0 * H - fitted, 1.0)) / d.independence;
   std::vector<FittedParameter> out;
@@ -346,8 +353,7 @@ void discriminate_against_first(Diagnosis& d, const std::map<std::string, FitPoi
   for (auto& e : d.ranking) {
     if (e.effect == first->effect) continue;
     in.second = &points.at(e.effect).r;
-    in.parameter_difference =
-        static_cast<double>(first->parameters.size()) - static_cast<double>(e.parameters.size());
+    in.parameter_difference = static_cast<double>(first->parameters.size()) - static_cast<double>(e.parameters.size());
     e.versus_first_p = discriminate(in).p_value;
   }
 }
@@ -387,8 +393,8 @@ std::vector<EffectFit> test_on_top(Fitter& fit, const std::vector<EffectCandidat
   std::vector<EffectFit> ranking;
   for (const EffectCandidate& next : candidates) {
     if (std::find(accepted.begin(), accepted.end(), &next) != accepted.end()) continue;
-    progress(options, "the chain, step " + std::to_string(d.chain.size() + 1) + ": fitting " + next.effect +
-                          " with " + with);
+    progress(options,
+             "the chain, step " + std::to_string(d.chain.size() + 1) + ": fitting " + next.effect + " with " + with);
     const EffectCandidate c = chained_candidate(accepted, &next);
     FitPoint from = point;
     from.theta = Eigen::VectorXd::Zero(fit.size(&c));
@@ -501,8 +507,9 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
       d.summary += r;
     }
   } else if (d.noise_ratio <= 1.0 + options.noise_excess) {
-    d.summary = "no significant missing effect: the model matches the measurements to the noise (and the "
-                "simulator's numerics)";
+    d.summary =
+        "no significant missing effect: the model matches the measurements to the noise (and the "
+        "simulator's numerics)";
   } else {
     d.summary = "no significant missing effect: no effect of the catalogue explains the residual";
   }
@@ -539,8 +546,8 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   const Reference ref{b.at.data, b.dof, 0};
   for (size_t k = 0; k < candidates.size(); ++k) {
     const EffectCandidate& c = candidates[k];
-    progress(options, "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " +
-                          std::to_string(candidates.size()) + ")");
+    progress(options,
+             "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " + std::to_string(candidates.size()) + ")");
     CandidateFits fits = fit_candidate(fit, held, c, b, options);
     d.ranking.push_back(score(fit, c, fits, ref, d, options));
     points[c.effect] = std::move(fits.joint.at);

@@ -40,15 +40,17 @@ namespace rigflex::diagnose {
 
 struct DiagnosisOptions {
   CompareOptions compare;
-  int refinements = 4;            // chord iterations per linearization
-  int relinearizations = 2;       // new linearizations while they gain > 1 %
+  int refinements = 4;             // chord iterations per linearization
+  int relinearizations = 2;        // new linearizations while they gain > relinearize_gain
+  double relinearize_gain = 0.10;  // share of the objective (diagnose/joint_fit.cpp); the baseline: at most 1 %
+  static constexpr double kBaselineRelinearizeGain = 0.01;
   // An effect that explains at least the threshold's share but less than
   // the ceiling's is fitted again by continuation over the record's length
   // (diagnosis.cpp), the better fit kept.
   double continuation_threshold = 0.05, continuation_ceiling = 0.9;
-  double significance = 1e-6;     // p-value of the F test
-  double min_explained = 0.10;    // share of the baseline residual
-  double min_excess_share = 0.20; // share of the residual above the noise
+  double significance = 1e-6;      // p-value of the F test
+  double min_explained = 0.10;     // share of the baseline residual
+  double min_excess_share = 0.20;  // share of the residual above the noise
   // Baseline residual / noise expectation - 1. Calibrated on control data:
   // the model's own records give 0.92-0.95 x the noise; records of the same
   // model integrated by CVODE's BDF2 (another simulator, each with a period
@@ -62,13 +64,13 @@ struct DiagnosisOptions {
   std::vector<std::string> effects;  // only these (empty: every effect the model lacks)
   // Effects the chain accepts at most (1: the missing effect alone).
   int max_effects = 3;
-  int threads = 0;                // 0: the hardware's
+  int threads = 0;  // 0: the hardware's
   std::function<void(const std::string&)> progress;
   // A fitted model parameter is "off" beyond this many of its stated
   // standard deviations: 3 keeps a user's honest statement from being
   // flagged in more than 0.3 % of the cases per parameter.
   static constexpr double kOffSigmas = 3.0;
-  void validate() const;          // std::invalid_argument naming the field
+  void validate() const;  // std::invalid_argument naming the field
 };
 
 struct FittedParameter {
@@ -92,15 +94,15 @@ struct EffectFit {
   double f_statistic = 0, p_value = 1;
   bool significant = false, plausible = true;
   int refinements = 0;
-  std::string rig_block;                 // YAML under `effects:` with the fitted values; empty: no effect
+  std::string rig_block;  // YAML under `effects:` with the fitted values; empty: no effect
   std::string advice;
-  std::string evidence;                  // a measurement that shows the effect directly
+  std::string evidence;  // a measurement that shows the effect directly
   // Vuong's test of this fit against the missing effect's (the first-ranked
   // effect's when none is): a p-value above DiagnosisOptions::discrimination
   // says the records cannot tell the two apart.
   double versus_first_p = 1;
-  std::string note;                      // why a refinement stopped, if it did
-  std::vector<SwingState> states;        // refitted swing states per history
+  std::string note;                // why a refinement stopped, if it did
+  std::vector<SwingState> states;  // refitted swing states per history
   // The body's offsets refitted with the effect; empty unless that fit
   // reaches the noise (`body_credible`, see diagnosis.cpp's score): above
   // it they measure the model's remaining error, not the body, and the
@@ -120,7 +122,7 @@ struct ChainStep {
   std::string rig_block;                    // YAML under `effects:` adding them all
   std::vector<FittedParameter> body;        // as EffectFit::body
   bool body_credible = false;
-  std::vector<EffectFit> ranking;           // tested at this step, on top of the steps before (the first: none)
+  std::vector<EffectFit> ranking;  // tested at this step, on top of the steps before (the first: none)
 };
 
 struct Diagnosis {
@@ -145,7 +147,7 @@ struct Diagnosis {
   // the model as it is), and those beyond what the rig file states; empty
   // where that model stays far above the noise (EffectFit::body_credible).
   std::vector<FittedParameter> body, parameters_off;
-  std::string summary;                      // one line: the verdict
+  std::string summary;  // one line: the verdict
 };
 
 Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,

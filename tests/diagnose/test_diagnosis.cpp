@@ -3,10 +3,9 @@
 // in tests/acceptance/test_diagnosis_acceptance.cpp.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <iostream>
-
-#include <Eigen/LU>
 
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/effect_candidates.hpp"
@@ -37,7 +36,8 @@ TEST(JointCompliance, FixedFrameStiffnessInvertsTheCompliance) {
   const rig::Vec3 t1 = rig::Vec3::UnitZ().cross(m.geometry.rods[0].upper - centroid);
   EXPECT_NEAR(C(0, 3), 1e-6 + 3e-6 * t1.x() * t2.x(), 1e-15);
   EXPECT_NEAR(C(2, 2), 3e-7, 1e-15);
-  EXPECT_THROW(rig::joint_compliance_fixed_frame(m.geometry, 200.0, rig::FixedJointCompliance{}), std::invalid_argument);
+  EXPECT_THROW(rig::joint_compliance_fixed_frame(m.geometry, 200.0, rig::FixedJointCompliance{}),
+               std::invalid_argument);
   c.joints[1].y() = -1e-6;
   EXPECT_THROW(rig::joint_compliance_fixed_frame(m.geometry, 200.0, c), std::invalid_argument);
 }
@@ -104,8 +104,8 @@ diagnose::Diagnosis diagnose_two_short_records(const rig::RigModel& start, const
 TEST(Diagnosis, FindsALoadCellCalibration) {
   const rig::RigModel start = trifilar();
   rig::RigModel truth = start;
-  truth.effects.push_back(std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.0},
-                                                              std::vector<double>{5.0, 0.0, -5.0}));
+  truth.effects.push_back(
+      std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.0}, std::vector<double>{5.0, 0.0, -5.0}));
   const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 5, {"load_cell_gain", "rod_length_error"});
   ASSERT_EQ(d.ranking.size(), 2u);
   EXPECT_EQ(d.ranking[0].effect, "load_cell_gain");
@@ -156,6 +156,13 @@ TEST(Diagnosis, OptionsAreChecked) {
   o = {};
   o.max_effects = 0;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.relinearize_gain = 1.0;  // no linearization could ever gain enough for another: say 0.99 if that is meant
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.relinearize_gain = -0.1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.relinearize_gain = 0.0;
+  EXPECT_NO_THROW(o.validate());
   EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
 }
 
