@@ -240,7 +240,7 @@ FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start, 
     out.at.cost = out.at.data + fit.prior_cost(out.at.theta);
     const Eigen::VectorXd inv_sigma = fit.prior_inverse_sigma(c);
     const double cost_before = out.at.cost;
-    bool converged = false, tried = false;
+    bool converged = false;
     for (int it = 0; it <= options.refinements && !converged; ++it) {
       bool accepted = false;
       // With the body among the parameters: Gauss-Newton, then
@@ -256,17 +256,15 @@ FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start, 
       // which there reaches lower residuals within the same linearizations.
       const bool marquardt = nb > 0;
       const int levels = marquardt ? 8 : 5;
-      for (; !accepted; ++level) {
-        level = std::min(level, levels - 1);
+      for (int attempt = 0; !accepted; ++attempt) {
         const double damping = marquardt && level > 0 ? std::pow(10.0, level - 4) : 0.0;
         const double lambda = marquardt ? 1.0 : std::pow(0.5, level);
         const Step st = gauss_newton(Js, Jt, out.at.r, scale, out.at.theta, inv_sigma, damping);
-        if (it == 0 && !tried) {
+        if (it == 0 && attempt == 0) {
           // The parameters' covariance is the undamped linearization's.
           out.schur_inverse = damping == 0
                                   ? st.schur_inverse
                                   : gauss_newton(Js, Jt, out.at.r, scale, out.at.theta, inv_sigma, 0.0).schur_inverse;
-          tried = true;
         }
         if (first) out.first_predicted = st.predicted, first = false;
         Eigen::VectorXd theta = out.at.theta + lambda * st.dtheta;
@@ -288,12 +286,12 @@ FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start, 
           out.at = std::move(trial);
           accepted = true;
           ++out.steps;
-          level = std::max(level - 2, -1);  // the loop's increment: one level less than the one that worked
+          level = std::max(level - 1, 0);
+        } else if (level == levels - 1) {
+          level = 0;  // every level failed: a new linearization starts undamped
+          break;
         } else {
-          if (level == levels - 1) {
-            level = 0;  // a new linearization starts undamped
-            break;
-          }
+          ++level;
         }
       }
       if (!accepted) break;
