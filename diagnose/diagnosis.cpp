@@ -42,13 +42,6 @@ void DiagnosisOptions::validate() const {
 
 namespace {
 
-double lowest_swing_hz(const ResponseModel& m) {
-  for (const auto& mode : m.linearization.modes) {
-    if (mode.kind == rig::RigModeKind::swing) return mode.frequency_hz;
-  }
-  return 0.0;
-}
-
 double f_test_p_value(double improvement, double dof1, double residual, double dof2) {
   if (dof1 <= 0 || dof2 <= 1 || residual <= 0) return 1.0;
   if (improvement <= 0) return 1.0;

@@ -19,13 +19,6 @@ double sum_squares(const Residuals& r) {
 
 namespace {
 
-double lowest_swing_hz(const ResponseModel& m) {
-  for (const auto& mode : m.linearization.modes) {
-    if (mode.kind == rig::RigModeKind::swing) return mode.frequency_hz;
-  }
-  return 0.0;
-}
-
 SwingState state_steps(const ResponseModel& m) {
   double L = 0;
   for (const auto& r : m.system.assembly().geometry.rods) L += r.length / m.system.rods();

@@ -56,6 +56,9 @@ struct ResponseModel {
   std::vector<int> elastic_modes;  // indices into linearization.modes: deformation modes <= resolve_hz
 };
 
+// The lowest swing mode's frequency (Hz); 0 when the model has none.
+double lowest_swing_hz(const ResponseModel& m);
+
 // The full rig state (configuration and velocity) of a swing state.
 void swing_initial_state(const ResponseModel& m, const SwingState& s, rig::Configuration& c, rig::Velocity& v,
                          const ElasticState& elastic = {});

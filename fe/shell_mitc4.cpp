@@ -11,6 +11,9 @@ namespace {
 
 using namespace shell_detail;
 
+// Named: the two shells' helpers share their names (one unity-build source may hold both).
+namespace mitc4 {
+
 // Membrane and drilling. Bilinear membrane enriched with the bubbles
 // (1 - xi^2), (1 - eta^2) in u and v, condensed out: the plain bilinear
 // element locks in in-plane bending (parasitic shear), which matters for
@@ -100,13 +103,14 @@ MatrixXd bending_stiffness(const LocalFrame& f, const ShellProperties& p) {
   return K;
 }
 
+}  // namespace mitc4
 }  // namespace
 
 ElementMatrices shell_mitc4(const std::vector<Vec3>& x, const ShellProperties& p) {
   check_properties(p);
   if (x.size() != 4) throw std::invalid_argument("shell_mitc4: expected 4 nodes");
   const LocalFrame f = make_local_frame(x);
-  const MatrixXd K = membrane_drilling_stiffness(f, p) + bending_stiffness(f, p);
+  const MatrixXd K = mitc4::membrane_drilling_stiffness(f, p) + mitc4::bending_stiffness(f, p);
   return to_global(K, shell_mass(f, shape_q4, 2, p), f);
 }
 

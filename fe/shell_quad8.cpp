@@ -28,6 +28,9 @@ namespace {
 
 using namespace shell_detail;
 
+// Named: the two shells' helpers share their names (one unity-build source may hold both).
+namespace quad8 {
+
 // Membrane and drilling penalty (shell_common.cpp), both with the full 3x3
 // rule: it integrates the quadratic fields and sees all 8 nodal tz patterns.
 MatrixXd membrane_drilling_stiffness(const LocalFrame& f, const ShellProperties& p) {
@@ -139,13 +142,14 @@ MatrixXd bending_stiffness(const LocalFrame& f, const ShellProperties& p) {
   return K.topLeftCorner(48, 48) - Kbi * Kii.ldlt().solve(Kbi.transpose());
 }
 
+}  // namespace quad8
 }  // namespace
 
 ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p) {
   check_properties(p);
   if (x.size() != 8) throw std::invalid_argument("shell_quad8: expected 8 nodes");
   const LocalFrame f = make_local_frame(x);
-  const MatrixXd K = membrane_drilling_stiffness(f, p) + bending_stiffness(f, p);
+  const MatrixXd K = quad8::membrane_drilling_stiffness(f, p) + quad8::bending_stiffness(f, p);
   return to_global(K, shell_mass(f, shape_q8, 3, p), f);
 }
 

@@ -32,9 +32,9 @@ struct Layout {
 // vector indexed by rod: a column "F99999999" must not size anything.
 using Found = std::map<int, size_t>;
 
-class Reader {
+class MeasurementFileReader {
  public:
-  Reader(std::string file, RodRule rule) : file_(std::move(file)), rule_(std::move(rule)) {}
+  MeasurementFileReader(std::string file, RodRule rule) : file_(std::move(file)), rule_(std::move(rule)) {}
 
   rig::Record read(std::string_view text) {
     // A UTF-8 byte order mark, as spreadsheet programs on Windows write one.
@@ -138,8 +138,8 @@ class Reader {
     return rods;
   }
 
-  std::vector<size_t> required(size_t line, const std::vector<std::string_view>& names, const Found& found,
-                               Quantity q, int rods) const {
+  std::vector<size_t> required(size_t line, const std::vector<std::string_view>& names, const Found& found, Quantity q,
+                               int rods) const {
     std::vector<size_t> out;
     for (int k = 1; k <= rods; ++k) {
       const auto it = found.find(k);
@@ -195,9 +195,9 @@ class Reader {
       t[r] = value(layout.time);
       // `line` is this row's 0-based index, so also the previous row's 1-based number.
       if (r > 0 && !(t[r] > t[r - 1]))
-        fail(line, "t", "time " + quoted(fields[layout.time]) + " is not after the previous sample's " +
-                            number_text(t[r - 1]) + " (line " + std::to_string(line) +
-                            "): time must strictly increase");
+        fail(line, "t",
+             "time " + quoted(fields[layout.time]) + " is not after the previous sample's " + number_text(t[r - 1]) +
+                 " (line " + std::to_string(line) + "): time must strictly increase");
       for (size_t k = 0; k < rods; ++k) {
         force[r * rods + k] = value(layout.force[k]);
         alpha[r * rods + k] = value(layout.alpha[k]);
@@ -274,7 +274,7 @@ class Reader {
 
 rig::Record parse_text(std::string_view text, const std::string& file, RodRule rule) {
   if (rule.count < 0) throw std::invalid_argument("time history: expected_rods must be 0 (any) or positive");
-  return Reader(file, std::move(rule)).read(text);
+  return MeasurementFileReader(file, std::move(rule)).read(text);
 }
 
 std::string read_all(std::istream& in, const std::string& file) {

@@ -13,27 +13,26 @@ namespace {
 namespace fs = std::filesystem;
 using namespace measurement_text;
 
-[[noreturn]] void refuse(const std::string& what) { throw std::invalid_argument("time history: " + what); }
+[[noreturn]] void refuse_history(const std::string& what) { throw std::invalid_argument("time history: " + what); }
 
 void check_sizes(const rig::Record& h) {
   const Eigen::Index n = h.force.cols(), rows = h.t.size();
-  if (rows == 0) refuse("no samples");
-  if (n == 0) refuse("no rods (force has no columns)");
-  for (const auto& [A, name] : {std::pair<const Eigen::MatrixXd*, const char*>{&h.force, "force"},
-                                {&h.alpha, "alpha"},
-                                {&h.beta, "beta"}})
+  if (rows == 0) refuse_history("no samples");
+  if (n == 0) refuse_history("no rods (force has no columns)");
+  for (const auto& [A, name] :
+       {std::pair<const Eigen::MatrixXd*, const char*>{&h.force, "force"}, {&h.alpha, "alpha"}, {&h.beta, "beta"}})
     if (A->rows() != rows || A->cols() != n)
-      refuse(std::string(name) + " is " + std::to_string(A->rows()) + " x " + std::to_string(A->cols()) +
-             ", expected " + std::to_string(rows) + " x " + std::to_string(n) + " (samples x rods)");
+      refuse_history(std::string(name) + " is " + std::to_string(A->rows()) + " x " + std::to_string(A->cols()) +
+                     ", expected " + std::to_string(rows) + " x " + std::to_string(n) + " (samples x rods)");
 }
 
 void check_values(const rig::Record& h) {
   auto sample = [](Eigen::Index i) { return " of sample " + std::to_string(i + 1); };
   for (Eigen::Index i = 0; i < h.t.size(); ++i) {
-    if (!std::isfinite(h.t(i))) refuse("t" + sample(i) + " is " + number_text(h.t(i)));
+    if (!std::isfinite(h.t(i))) refuse_history("t" + sample(i) + " is " + number_text(h.t(i)));
     if (i > 0 && !(h.t(i) > h.t(i - 1)))
-      refuse("t" + sample(i) + " (" + number_text(h.t(i)) + ") is not after the previous sample's (" +
-             number_text(h.t(i - 1)) + "): time must strictly increase");
+      refuse_history("t" + sample(i) + " (" + number_text(h.t(i)) + ") is not after the previous sample's (" +
+                     number_text(h.t(i - 1)) + "): time must strictly increase");
   }
   for (const auto& [A, q] : {std::pair<const Eigen::MatrixXd*, Quantity>{&h.force, Quantity::force},
                              {&h.alpha, Quantity::alpha},
@@ -41,19 +40,19 @@ void check_values(const rig::Record& h) {
     for (Eigen::Index k = 0; k < A->cols(); ++k)
       for (Eigen::Index i = 0; i < A->rows(); ++i)
         if (!std::isfinite((*A)(i, k)))
-          refuse(column_name(q, static_cast<int>(k + 1)) + sample(i) + " is " + number_text((*A)(i, k)));
+          refuse_history(column_name(q, static_cast<int>(k + 1)) + sample(i) + " is " + number_text((*A)(i, k)));
 }
 
 // Each comment must come back from its "# key: value" line as itself.
 void check_comments(const rig::Record& h) {
   for (const auto& [key, value] : h.provenance.comments) {
     const std::string which = "comment '" + key + "'";
-    if (key.empty()) refuse("a comment has an empty key");
-    if (key.find(':') != std::string::npos) refuse(which + ": the key contains ':'");
+    if (key.empty()) refuse_history("a comment has an empty key");
+    if (key.find(':') != std::string::npos) refuse_history(which + ": the key contains ':'");
     for (const std::string* s : {&key, &value}) {
-      if (s->find_first_of("\r\n") != std::string::npos) refuse(which + ": a line break in the key or value");
-      if (trim(*s) != *s) refuse(which + ": blanks at the start or end of the key or value");
-      if (!valid_utf8(*s)) refuse(which + ": not valid UTF-8");
+      if (s->find_first_of("\r\n") != std::string::npos) refuse_history(which + ": a line break in the key or value");
+      if (trim(*s) != *s) refuse_history(which + ": blanks at the start or end of the key or value");
+      if (!valid_utf8(*s)) refuse_history(which + ": not valid UTF-8");
     }
   }
 }

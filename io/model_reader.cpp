@@ -34,15 +34,15 @@ class SourceMap {
   std::map<std::string, YAML::Node> lines_;
 };
 
-class Reader {
+class ModelFileReader {
  public:
-  Reader(const YamlContext& ctx, fe::Model& model, SourceMap& src) : c_(ctx), m_(model), src_(src) {}
+  ModelFileReader(const YamlContext& ctx, fe::Model& model, SourceMap& src) : c_(ctx), m_(model), src_(src) {}
 
   void read(const YAML::Node& root) {
     c_.expect_map(root, "model file",
-                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets",
-                   "beams", "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame",
-                   "point_masses", "springs", "supports", "couplings"});
+                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets", "beams",
+                   "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame", "point_masses",
+                   "springs", "supports", "couplings"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
@@ -161,7 +161,8 @@ class Reader {
       if (!b.IsSequence() || b.size() != 2) c_.fail(b, "box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
       const Vec3 lo = c_.as_vec3(b[0], "box"), hi = c_.as_vec3(b[1], "box");
       for (const fe::Node& node : m_.nodes)
-        if ((node.x.array() >= lo.array() - kNodeTolerance).all() && (node.x.array() <= hi.array() + kNodeTolerance).all())
+        if ((node.x.array() >= lo.array() - kNodeTolerance).all() &&
+            (node.x.array() <= hi.array() + kNodeTolerance).all())
           out.push_back(node.id);
       if (out.empty()) c_.fail(b, "box", "no node inside the box");
     }
@@ -196,8 +197,8 @@ class Reader {
   }
   void beam_section(const std::string& name, const YAML::Node& n) {
     c_.expect_map(n, "beam section '" + name + "'",
-                  {"material", "shape", "width", "height", "diameter", "wall", "web_thickness", "flange_thickness",
-                   "A", "Iy", "Iz", "J", "shear_area_y", "shear_area_z"});
+                  {"material", "shape", "width", "height", "diameter", "wall", "web_thickness", "flange_thickness", "A",
+                   "Iy", "Iz", "J", "shear_area_y", "shear_area_z"});
     src_.add("beam_section", name, n);
     fe::BeamSection s;
     s.name = name;
@@ -500,7 +501,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   ModelFile out;
   SourceMap src;
   try {
-    Reader(ctx, out.model, src).read(root);
+    ModelFileReader(ctx, out.model, src).read(root);
     out.model.validate();
   } catch (const fe::ModelError& e) {
     const YAML::Node at = src.find(e.where());

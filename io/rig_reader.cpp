@@ -21,7 +21,7 @@ namespace {
 
 using rig::Vec3;
 
-struct Reader {
+struct RigFileReader {
   YamlContext ctx;
   std::filesystem::path base;
   int rods = 0;
@@ -336,7 +336,7 @@ rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& sou
   } catch (const YAML::ParserException& e) {
     throw InputError(source, e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
   }
-  Reader r{YamlContext(source), base};
+  RigFileReader r{YamlContext(source), base};
   const YamlContext& ctx = r.ctx;
   if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
   ctx.expect_map(root, "rig", {"name", "geometry", "body", "rods", "sensors", "release", "simulation", "effects"});
@@ -398,8 +398,9 @@ InputError no_equilibrium_error(const std::filesystem::path& file, const rig::Ri
       if (name == "rod_compliance" || name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility" ||
           name == "rod_length_error" || name == "joint_position_error") {
         key = "effects." + name;
-        advice = "with this effect the rig holds the body nowhere near the nominal pose (too soft, or too large an "
-                 "error?)";
+        advice =
+            "with this effect the rig holds the body nowhere near the nominal pose (too soft, or too large an "
+            "error?)";
         break;
       }
     }
@@ -440,7 +441,7 @@ void add_effects(rig::RigModel& model, const std::filesystem::path& file, const 
   } catch (const YAML::ParserException& e) {
     throw InputError(file.string(), e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
   }
-  Reader r{YamlContext(file.string()), file.parent_path()};
+  RigFileReader r{YamlContext(file.string()), file.parent_path()};
   if (!root.IsMap() || !root["effects"]) {
     throw InputError(file.string(), 1, "effects", "an effects file is a mapping with the one key 'effects'");
   }

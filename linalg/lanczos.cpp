@@ -12,6 +12,7 @@
 #include "linalg/block_kernels.hpp"
 #include "linalg/eigen_postprocess.hpp"
 #include "linalg/eigen_solver.hpp"
+#include "linalg/stopwatch.hpp"
 #include "linalg/thick_restart_lanczos.hpp"
 
 namespace rigflex::linalg {
@@ -39,10 +40,6 @@ void check_sizes(const SpMat& K, const SpMat& M) {
   }
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 bool use_dense(const EigenOptions& options, Index n) {
   return options.method == EigenMethod::dense ||
          (options.method == EigenMethod::automatic && n <= options.dense_threshold);
@@ -50,8 +47,7 @@ bool use_dense(const EigenOptions& options, Index n) {
 
 // The iteration on a checked factorization; the pairs are not yet
 // post-processed (see finish).
-EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
-                    SparseCholesky& factor_at_shift) {
+EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options, SparseCholesky& factor_at_shift) {
   check_sizes(K, M);
   options.validate(K.rows());
   if (!factor_at_shift.factorized() || factor_at_shift.rows() != K.rows()) {

@@ -8,6 +8,11 @@
 
 namespace rigflex::linalg {
 
+// Relative pivots (pivot / A_kk) below this are treated as numerically zero
+// at the default shift: rounding puts a mechanism's pivot at ~1e-16..1e-14,
+// while a rigid-body pivot there is ~1e-10 times (rigid-body mass) / M_kk.
+inline constexpr double kTinyPivot = 1e-13;
+
 // DOFs that move in null(A) for a symmetric positive SEMIdefinite A: those
 // whose row of A is exactly zero, and those whose component in an
 // orthonormal basis of the numerical null space exceeds 5 % of the largest.

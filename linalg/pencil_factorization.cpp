@@ -14,10 +14,6 @@ namespace {
 constexpr double kDefaultShiftFactor = 1e-10;
 // Retry factor for the default shift when pivots come out at rounding level.
 constexpr double kShiftRetryFactor = 1e3;
-// Relative pivots (pivot / A_kk) below this are treated as numerically zero
-// at the default shift: rounding puts a mechanism's pivot at ~1e-16..1e-14,
-// while a rigid-body pivot there is ~1e-10 times (rigid-body mass) / M_kk.
-constexpr double kTinyPivot = 1e-13;
 // On K + s M, which is positive definite unless there is a mechanism, pivots
 // come out at worst at 1 / (stiffness contrast); below this we confirm with
 // the null-space computation.
@@ -43,16 +39,13 @@ std::string not_definite_message(double sigma, const FactorStatus& status, bool 
   } else if (!status.message.empty()) {
     text += " (" + status.message + ")";
   }
-  text += user_shift ? ": the shift must lie below the lowest eigenvalue"
-                     : ": K or M is not positive semidefinite";
+  text += user_shift ? ": the shift must lie below the lowest eigenvalue" : ": K or M is not positive semidefinite";
   return text;
 }
 
 }  // namespace
 
-double default_shift(const SpMat& K, const SpMat& M) {
-  return -kDefaultShiftFactor * pencil_scale(K, M);
-}
+double default_shift(const SpMat& K, const SpMat& M) { return -kDefaultShiftFactor * pencil_scale(K, M); }
 
 PencilFactorization factorize_pencil(const SpMat& K, const SpMat& M, std::optional<double> shift,
                                      SparseCholesky& factor) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 namespace rigflex::test {
@@ -28,13 +29,20 @@ inline CliRun run(const std::string& args) {
   return r;
 }
 
+inline nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
 inline fs::path fresh_dir(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("rigflex_cli_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(d);
   return d;
 }
 
-inline std::string example(const std::string& name) { return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml"; }
+inline std::string example(const std::string& name) {
+  return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml";
+}
 
 inline fs::path write_model(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + ".yaml");

@@ -15,21 +15,16 @@ namespace {
 
 using namespace rigflex::test;
 
-const std::string kRig = cli_trifilar_rig("cli-trifilar");
-
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
+const std::string kCompareRig = cli_trifilar_rig("cli-trifilar");
 
 class CliCompare : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = new fs::path(fresh_dir("compare"));
     fs::create_directories(*dir_);
-    std::ofstream(*dir_ / "rig.yaml") << kRig;
+    std::ofstream(*dir_ / "rig.yaml") << kCompareRig;
     // The measured rig has a rod 3 mm too long.
-    std::ofstream(*dir_ / "truth.yaml") << kRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
+    std::ofstream(*dir_ / "truth.yaml") << kCompareRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
     const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 3 --duration 8 --seed 4 --out " +
                          (*dir_ / "data").string() + " --quiet");
     ASSERT_EQ(r.code, 0) << r.out;
@@ -58,10 +53,13 @@ TEST_F(CliCompare, WritesTheComparisonTheReportAndTheStudy) {
   EXPECT_NE(r.out.find("<- this run"), std::string::npos);
   // The same version again updates its entry; the effect added is a new version.
   ASSERT_EQ(run("compare " + rig().string() + " " + data() + " --study " + (*dir_ / "study").string() + " --out " +
-                out.string() + " --quiet").code, 0);
+                out.string() + " --quiet")
+                .code,
+            0);
   std::ofstream(*dir_ / "fix.yaml") << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
-  const CliRun fixed = run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "fix.yaml").string() +
-                           " --study " + (*dir_ / "study").string() + " --out " + (*dir_ / "cmp2").string() + " --quiet");
+  const CliRun fixed =
+      run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "fix.yaml").string() + " --study " +
+          (*dir_ / "study").string() + " --out " + (*dir_ / "cmp2").string() + " --quiet");
   ASSERT_EQ(fixed.code, 0) << fixed.out;
   const auto study = read_json(*dir_ / "study" / "study.json");
   ASSERT_EQ(study["versions"].size(), 2u);
@@ -88,8 +86,11 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
   EXPECT_TRUE(j["tested_after_chain"].empty());
   EXPECT_TRUE(fs::exists(out / "effects" / "found.yaml"));
   // The written effect file is a valid --effects file.
-  EXPECT_EQ(run("compare " + rig().string() + " " + data() + " --effects " + (out / "effects" / "rod_length_error.yaml").string() +
-                " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
+  EXPECT_EQ(
+      run("compare " + rig().string() + " " + data() + " --effects " +
+          (out / "effects" / "rod_length_error.yaml").string() + " --out " + (*dir_ / "cmp3").string() + " --quiet")
+          .code,
+      0);
 }
 
 // The rig file states the rods' stiffness and how well it is known; the
@@ -99,10 +100,12 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
 TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   const fs::path dir = fresh_dir("rods_off");
   fs::create_directories(dir);
-  std::ofstream(dir / "truth.yaml") << kRig << "rods: {stiffness: 2.5e5}\n";
-  std::ofstream(dir / "rig.yaml") << kRig << "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n";
+  std::ofstream(dir / "truth.yaml") << kCompareRig << "rods: {stiffness: 2.5e5}\n";
+  std::ofstream(dir / "rig.yaml") << kCompareRig << "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n";
   ASSERT_EQ(run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
-                (dir / "data").string() + " --quiet").code, 0);
+                (dir / "data").string() + " --quiet")
+                .code,
+            0);
   const CliRun r = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
                        " --only rod_compliance --out " + (dir / "diag").string() + " --quiet");
   ASSERT_EQ(r.code, 0) << r.out;
@@ -114,7 +117,7 @@ TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   EXPECT_EQ(j["body"]["rods.stiffness"]["unit"], "%");
   EXPECT_NEAR(j["body"]["rods.stiffness"]["offset"].get<double>(), -50.0, 1.0);
   // Rigid rods have no stiffness to be unsure of: file, line and key.
-  std::ofstream(dir / "bad.yaml") << kRig << "rods: {damping: 10, uncertainty: {stiffness: 0.1}}\n";
+  std::ofstream(dir / "bad.yaml") << kCompareRig << "rods: {damping: 10, uncertainty: {stiffness: 0.1}}\n";
   const CliRun bad = run("diagnose " + (dir / "bad.yaml").string() + " " + (dir / "data" / "set1").string() +
                          " --out " + (dir / "x").string());
   EXPECT_EQ(bad.code, 2) << bad.out;

@@ -14,8 +14,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <ostream>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 #include "apps/cli_support.hpp"
@@ -25,7 +25,7 @@ namespace {
 
 using namespace rigflex::test;
 
-const std::string kRig = cli_trifilar_rig("loop-trifilar");
+const std::string kLoopRig = cli_trifilar_rig("loop-trifilar");
 
 struct Variant {
   const char* name;
@@ -39,12 +39,12 @@ class CliEffectFiles : public ::testing::TestWithParam<Variant> {
   static void SetUpTestSuite() {
     dir_ = new fs::path(fresh_dir("effect_files"));
     fs::create_directories(*dir_);
-    std::ofstream(*dir_ / "truth.yaml") << kRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
-    const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 3 --duration 8 --seed 11 --out " +
-                         (*dir_ / "data").string() + " --quiet");
+    std::ofstream(*dir_ / "truth.yaml") << kLoopRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
+    const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() +
+                         " --histories 3 --duration 8 --seed 11 --out " + (*dir_ / "data").string() + " --quiet");
     ASSERT_EQ(r.code, 0) << r.out;
-    const CliRun s = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 1 --duration 6 --seed 12 --out " +
-                         (*dir_ / "short").string() + " --quiet");
+    const CliRun s = run("simulate " + (*dir_ / "truth.yaml").string() +
+                         " --histories 1 --duration 6 --seed 12 --out " + (*dir_ / "short").string() + " --quiet");
     ASSERT_EQ(s.code, 0) << s.out;
   }
   static void TearDownTestSuite() {
@@ -63,13 +63,13 @@ TEST_P(CliEffectFiles, CompareRunsOnEveryFileDiagnoseWrote) {
   // then fits a rod compliance on top of them too.
   const std::string rods = v.compliant_rods ? "rods: {stiffness: 1.0e8}\n" : "";
   const fs::path fitted = here / "fitted.yaml";
-  std::ofstream(fitted) << kRig << rods;
+  std::ofstream(fitted) << kLoopRig << rods;
   const CliRun d = run("diagnose " + fitted.string() + " " + (*dir_ / "data" / "set1").string() + " --out " +
                        (here / "diag").string() + " --quiet");
   ASSERT_EQ(d.code, 0) << d.out;
   for (const std::string method : {"generalized-alpha", "bdf"}) {
     const fs::path rig = here / (method + ".yaml");
-    std::ofstream(rig) << kRig << "simulation: {method: " << method << "}\n" << rods;
+    std::ofstream(rig) << kLoopRig << "simulation: {method: " << method << "}\n" << rods;
     const std::string data = (*dir_ / (method == "bdf" ? "short" : "data") / "set1").string();
     int files = 0;
     for (const auto& entry : fs::directory_iterator(here / "diag" / "effects")) {

@@ -25,7 +25,7 @@ using namespace rigflex::test;
 // Three vertical rigid rods of L = 1 m at R = 0.4 m around P, 100 kg body with
 // Jzz = 12 kg m^2, g = 9.81: swing at sqrt(g/L)/2pi twice, yaw at
 // sqrt(m g R^2 / (Jzz L))/2pi. No frames, no effects (no in-process reduction).
-const std::string kRig = R"(name: small-rig
+const std::string kSmallRig = R"(name: small-rig
 geometry:
   gravity: 9.81
   reference_point: [0, 0, 0]
@@ -82,7 +82,7 @@ std::vector<fs::path> files_under(const fs::path& dir) {
 // ------------------------------------------------------------------ check
 
 TEST(CliRig, CheckOfARigidRigWritesCheckJson) {
-  const RigFile rig(kRig);
+  const RigFile rig(kSmallRig);
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -112,7 +112,7 @@ TEST(CliRig, CheckOfCompliantRodsGivesTheBounceAsF1) {
   // Rods of k = 1e5 N/m: the body bounces at sqrt(3 k / m)/2pi = 8.717 Hz, the
   // first deformation mode (rolls are at 9.9 Hz). Tolerance 1e-6 relative
   // (the rods' geometric stiffness does not act along them).
-  const RigFile rig(kRig + "effects:\n  rod_compliance: {stiffness: 1.0e5}\n");
+  const RigFile rig(kSmallRig + "effects:\n  rod_compliance: {stiffness: 1.0e5}\n");
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
@@ -130,19 +130,20 @@ TEST(CliRig, CheckOfCompliantRodsGivesTheBounceAsF1) {
 }
 
 TEST(CliRig, CheckOfABadRigNamesFileLineAndKeyAndWritesNothing) {
-  const std::string text = replace_first(kRig, "mass: 100.0", "mass: -100.0");
+  const std::string text = replace_first(kSmallRig, "mass: 100.0", "mass: -100.0");
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
   EXPECT_EQ(r.code, 2) << r.out;
-  const std::string where = rig.file.string() + ":" + std::to_string(line_of(text, "mass: -100.0")) + ": key 'body.mass'";
+  const std::string where =
+      rig.file.string() + ":" + std::to_string(line_of(text, "mass: -100.0")) + ": key 'body.mass'";
   EXPECT_NE(r.out.find(where), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(CliRig, CheckWithoutStaticEquilibriumNamesTheEffect) {
   // 1 N/m rods would let 100 kg sink 327 m: no equilibrium is found near the rig.
-  const std::string text = kRig + "effects:\n  rod_compliance: {stiffness: 1.0}\n";
+  const std::string text = kSmallRig + "effects:\n  rod_compliance: {stiffness: 1.0}\n";
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
@@ -157,7 +158,7 @@ TEST(CliRig, CheckWithoutStaticEquilibriumNamesTheEffect) {
 // --------------------------------------------------------------- simulate
 
 TEST(CliRig, SimulateWritesMeasurementFilesOfTheSpec) {
-  const RigFile rig(kRig);
+  const RigFile rig(kSmallRig);
   const fs::path out = rig.dir.path() / "meas";
   const CliRun r = run("simulate " + rig.file.string() +
                        " --sets 1 --histories 2 --duration 2 --seed 3 --quiet --out " + out.string());
@@ -199,7 +200,7 @@ TEST(CliRig, SimulateWritesMeasurementFilesOfTheSpec) {
 }
 
 TEST(CliRig, SimulateIsReproducibleBySeed) {
-  const RigFile rig(kRig);
+  const RigFile rig(kSmallRig);
   auto simulate = [&](const std::string& seed, const std::string& folder) {
     const fs::path out = rig.dir.path() / folder;
     const CliRun r = run("simulate " + rig.file.string() + " --sets 1 --histories 2 --duration 2 --seed " + seed +
@@ -219,7 +220,7 @@ TEST(CliRig, SimulateIsReproducibleBySeed) {
 }
 
 TEST(CliRig, SimulateRefusesZeroHistories) {
-  const RigFile rig(kRig);
+  const RigFile rig(kSmallRig);
   const fs::path out = rig.dir.path() / "meas";
   const CliRun r = run("simulate " + rig.file.string() + " --histories 0 --quiet --out " + out.string());
   EXPECT_NE(r.code, 0) << r.out;
@@ -229,7 +230,7 @@ TEST(CliRig, SimulateRefusesZeroHistories) {
 
 TEST(CliRig, SimulateOfARigWhoseNameCannotGoInTheFiles) {
   // Refused when read, not when the CSV writer meets the "# rig:" line.
-  const std::string text = replace_first(kRig, "name: small-rig", "name: \"small-rig \"");
+  const std::string text = replace_first(kSmallRig, "name: small-rig", "name: \"small-rig \"");
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "meas";
   const CliRun r = run("simulate " + rig.file.string() + " --histories 1 --duration 1 --quiet --out " + out.string());

@@ -12,7 +12,6 @@ namespace {
 
 using namespace shell_test;
 
-constexpr double kE = 200e9, kNu = 0.3, kRho = 8000.0;
 constexpr double kB = 0.2;  // mid-line side of the square section
 constexpr double kT = 0.005, kL = 2.0;
 

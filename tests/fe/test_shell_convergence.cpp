@@ -12,8 +12,6 @@ namespace {
 
 using namespace shell_test;
 
-constexpr double kE = 200e9, kNu = 0.3, kRho = 8000.0;
-
 // Exact first bending frequency of a hard simply supported Reissner-Mindlin
 // plate (shear factor 5/6, rotary inertia rho t^3/12), mode (m, n): the lower
 // root of (K a2 - rho t w2)(D a2 + K - I w2) = K^2 a2, a2 = (m pi/a)^2 + (n pi/b)^2.

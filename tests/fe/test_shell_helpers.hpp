@@ -25,6 +25,8 @@
 
 namespace rigflex::fe::shell_test {
 
+inline constexpr double kE = 200e9, kNu = 0.3, kRho = 8000.0;  // steel (Pa, -, kg/m^3)
+
 using std::numbers::pi;
 
 // Eigenvalues of K after symmetric diagonal (Jacobi) scaling, ascending.

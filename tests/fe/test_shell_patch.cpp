@@ -12,8 +12,6 @@ using namespace shell_test;
 using Eigen::MatrixXd;
 using Eigen::VectorXd;
 
-constexpr double kE = 200e9, kNu = 0.3, kRho = 8000.0;
-
 enum class PatchKind {
   // MacNeal & Harder (1985) five-element patch, 0.24 x 0.12: trapezoids.
   MacNealHarder,

@@ -17,10 +17,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "support/input_errors.hpp"
-#include "support/temp_files.hpp"
 #include "io/input_error.hpp"
 #include "io/measurement_csv.hpp"
+#include "support/awkward_doubles.hpp"
+#include "support/input_errors.hpp"
+#include "support/temp_files.hpp"
 
 namespace rigflex {
 namespace {
@@ -31,7 +32,7 @@ using rig::Record;
 using test::read_text;
 using test::write_text;
 
-std::set<std::string> entries(const fs::path& dir) {
+std::set<std::string> file_names(const fs::path& dir) {
   std::set<std::string> out;
   for (const auto& e : fs::directory_iterator(dir)) out.insert(e.path().filename().string());
   return out;
@@ -43,7 +44,7 @@ Record parse(const std::string& text, int expected_rods = 0) {
 }
 
 // The error of parsing `text`; fails the test if there is none.
-io::InputError error_of(const std::string& text, int expected_rods = 0) {
+io::InputError csv_error_of(const std::string& text, int expected_rods = 0) {
   return test::input_error_of([&] { parse(text, expected_rods); }, "the text:\n" + text);
 }
 
@@ -114,42 +115,9 @@ Table sample_table(int rods, int rows) {
   return t;
 }
 
-// Doubles that break lossy formatting: random bit patterns (any exponent,
-// subnormals included), wide-range decimals, and hand-picked values.
-class Awkward {
- public:
-  double next() {
-    static const double special[] = {1.0 / 3, -0.0, 1e-300, std::numeric_limits<double>::denorm_min(),
-                                     std::numeric_limits<double>::min(), std::numeric_limits<double>::max(),
-                                     std::numeric_limits<double>::lowest(), 0.1, 2.0 / 3, -1e300};
-    switch (rng_() % 4) {
-      case 0:
-        for (;;) {
-          const double v = std::bit_cast<double>(static_cast<std::uint64_t>(rng_()));
-          if (std::isfinite(v)) return v;
-        }
-      case 1: {
-        const double mantissa = std::uniform_real_distribution<double>(-1, 1)(rng_);
-        return mantissa * std::pow(10.0, std::uniform_int_distribution<int>(-300, 300)(rng_));
-      }
-      case 2: return std::uniform_real_distribution<double>(-1e3, 1e3)(rng_);
-      default: return special[rng_() % std::size(special)];
-    }
-  }
-  Eigen::MatrixXd matrix(Eigen::Index rows, Eigen::Index cols) {
-    Eigen::MatrixXd A(rows, cols);
-    for (Eigen::Index j = 0; j < cols; ++j)
-      for (Eigen::Index i = 0; i < rows; ++i) A(i, j) = next();
-    return A;
-  }
-
- private:
-  std::mt19937_64 rng_{20240611};
-};
-
 // Awkward values everywhere except time, which must increase: awkward steps.
 Record awkward_history(int rods, int samples) {
-  Awkward a;
+  test::AwkwardDoubles a;
   Record h;
   h.provenance.comments = {{"sample_rate_hz", "500"}, {"body", "light-truck"}, {"note", "a: b, c"}, {"empty", ""}};
   h.t.resize(samples);
@@ -202,7 +170,7 @@ TEST(TimeHistoryCsv, RoundTripIsBitExact) {
     EXPECT_EQ(read_text(file), io::format_record_csv(h));
     EXPECT_EQ(io::format_record_csv(back), io::format_record_csv(h));
   }
-  EXPECT_EQ(entries(dir.path()), (std::set<std::string>{"h3.csv", "h4.csv"}));  // no temporary left
+  EXPECT_EQ(file_names(dir.path()), (std::set<std::string>{"h3.csv", "h4.csv"}));  // no temporary left
 }
 
 TEST(TimeHistoryCsv, FormatIsTheContractsLayoutWithShortestNumbers) {
@@ -270,12 +238,9 @@ TEST(TimeHistoryCsv, CommentsParsed) {
                     "# sample_rate_hz: 1000",
                     "# Größe: ü"};
   const Record h = parse(table.text());
-  const std::vector<std::pair<std::string, std::string>> expected = {{"sample_rate_hz", "500"},
-                                                                     {"body", "light-truck"},
-                                                                     {"operator", "J. Doe"},
-                                                                     {"url", "http://rig:8080/log"},
-                                                                     {"sample_rate_hz", "1000"},
-                                                                     {"Größe", "ü"}};
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"sample_rate_hz", "500"},      {"body", "light-truck"},    {"operator", "J. Doe"},
+      {"url", "http://rig:8080/log"}, {"sample_rate_hz", "1000"}, {"Größe", "ü"}};
   EXPECT_EQ(h.provenance.comments, expected);
   EXPECT_EQ(h.comment("sample_rate_hz"), "500");  // the first of repeated keys
   EXPECT_EQ(h.comment("body"), "light-truck");
@@ -302,27 +267,27 @@ TEST(TimeHistoryCsvErrors, MissingColumn) {
   for (const std::string name : {"t", "F2", "alpha1", "beta3"}) {
     Table table = sample_table(3, 3);
     table.remove_column(name);
-    expect_error(error_of(table.text()), table.header_line(), name, "missing column");
+    expect_error(csv_error_of(table.text()), table.header_line(), name, "missing column");
   }
   // F1..Fn must be contiguous: F3 missing while F4 is there.
   Table gap = sample_table(4, 3);
   gap.remove_column("F3");
-  expect_error(error_of(gap.text()), gap.header_line(), "F3", "missing column");
+  expect_error(csv_error_of(gap.text()), gap.header_line(), "F3", "missing column");
   // Names are exact, and the message says why "T" is not "t".
   Table upper = sample_table(3, 3);
   upper.header[upper.column("t")] = "T";
-  expect_error(error_of(upper.text()), upper.header_line(), "t", "case-sensitive");
+  expect_error(csv_error_of(upper.text()), upper.header_line(), "t", "case-sensitive");
   // A semicolon separated file has one header field.
   std::string semicolons = sample_table(3, 2).text();
   std::replace(semicolons.begin(), semicolons.end(), ',', ';');
-  expect_error(error_of(semicolons), 3, "t", "comma separated");
+  expect_error(csv_error_of(semicolons), 3, "t", "comma separated");
 }
 
 TEST(TimeHistoryCsvErrors, DuplicatedColumn) {
   for (const std::string name : {"t", "F1", "alpha2", "beta3"}) {
     Table table = sample_table(3, 3);
     table.add_column(name, "0");
-    expect_error(error_of(table.text()), table.header_line(), name, "duplicated column");
+    expect_error(csv_error_of(table.text()), table.header_line(), name, "duplicated column");
   }
   Table unknown = sample_table(3, 3);  // unknown columns may repeat: nobody reads them
   unknown.add_column("note", "a");
@@ -340,63 +305,63 @@ TEST(TimeHistoryCsvErrors, NonNumericOrNonFiniteValue) {
       Table table = sample_table(3, 4);
       table.at(2, column) = value;
       SCOPED_TRACE(column + " = '" + value + "'");
-      expect_error(error_of(table.text()), table.row_line(2), column, words);
+      expect_error(csv_error_of(table.text()), table.row_line(2), column, words);
     }
 }
 
 TEST(TimeHistoryCsvErrors, WrongFieldCount) {
   Table few = sample_table(4, 4);
   few.rows[1].pop_back();
-  expect_error(error_of(few.text()), few.row_line(1), "beta4", "fields but the header has");
+  expect_error(csv_error_of(few.text()), few.row_line(1), "beta4", "fields but the header has");
   Table many = sample_table(4, 4);
   many.rows[3].push_back("1");
-  expect_error(error_of(many.text()), many.row_line(3), "", "decimal point");
+  expect_error(csv_error_of(many.text()), many.row_line(3), "", "decimal point");
   Table comma = sample_table(3, 4);
   comma.at(0, "F1") = "1000,25";  // decimal comma
-  expect_error(error_of(comma.text()), comma.row_line(0), "", "decimal point");
+  expect_error(csv_error_of(comma.text()), comma.row_line(0), "", "decimal point");
   // A blank line among the samples is not a trailing blank line.
   Table blank = sample_table(3, 4);
   blank.rows.insert(blank.rows.begin() + 2, std::vector<std::string>{""});
-  expect_error(error_of(blank.text()), blank.row_line(2), "", "blank line");
+  expect_error(csv_error_of(blank.text()), blank.row_line(2), "", "blank line");
 }
 
 TEST(TimeHistoryCsvErrors, TimeNotStrictlyIncreasing) {
   Table equal = sample_table(3, 5);
   equal.at(3, "t") = equal.at(2, "t");
-  expect_error(error_of(equal.text()), equal.row_line(3), "t", "strictly increase");
+  expect_error(csv_error_of(equal.text()), equal.row_line(3), "t", "strictly increase");
   Table back = sample_table(3, 5);
   back.at(4, "t") = "0.001";
-  expect_error(error_of(back.text()), back.row_line(4), "t", "not after");
+  expect_error(csv_error_of(back.text()), back.row_line(4), "t", "not after");
 }
 
 TEST(TimeHistoryCsvErrors, RodCountDifferentFromExpected) {
   const Table three = sample_table(3, 3);
-  expect_error(error_of(three.text(), 4), three.header_line(), "F4", "3 rods");
+  expect_error(csv_error_of(three.text(), 4), three.header_line(), "F4", "3 rods");
   const Table four = sample_table(4, 3);
-  expect_error(error_of(four.text(), 3), four.header_line(), "F4", "4 rods");
+  expect_error(csv_error_of(four.text(), 3), four.header_line(), "F4", "4 rods");
   // Angles of a rod without a force column.
   Table extra = sample_table(4, 3);
   extra.add_column("alpha5", "0");
   extra.add_column("beta5", "0");
-  expect_error(error_of(extra.text()), extra.header_line(), "alpha5", "no rod 5");
+  expect_error(csv_error_of(extra.text()), extra.header_line(), "alpha5", "no rod 5");
   Table beta = sample_table(3, 3);
   beta.add_column("beta4", "0");
-  expect_error(error_of(beta.text()), beta.header_line(), "beta4", "no rod 4");
+  expect_error(csv_error_of(beta.text()), beta.header_line(), "beta4", "no rod 4");
   EXPECT_THROW(parse(three.text(), -1), std::invalid_argument);
 }
 
 TEST(TimeHistoryCsvErrors, NoDataRows) {
   Table header_only = sample_table(3, 0);
-  expect_error(error_of(header_only.text()), header_only.header_line(), "", "no data rows");
-  expect_error(error_of(header_only.text() + "\n \r\n"), header_only.header_line(), "", "no data rows");
-  expect_error(error_of(""), 1, "", "empty");
-  expect_error(error_of("# body: light-truck\n# sample_rate_hz: 500\n"), 2, "", "no header line");
+  expect_error(csv_error_of(header_only.text()), header_only.header_line(), "", "no data rows");
+  expect_error(csv_error_of(header_only.text() + "\n \r\n"), header_only.header_line(), "", "no data rows");
+  expect_error(csv_error_of(""), 1, "", "empty");
+  expect_error(csv_error_of("# body: light-truck\n# sample_rate_hz: 500\n"), 2, "", "no header line");
 }
 
 TEST(TimeHistoryCsvErrors, CommentNotUtf8) {
   Table table = sample_table(3, 2);
   table.comments[1] = "# operator: M\xFCller";  // Latin-1
-  expect_error(error_of(table.text()), 2, "", "UTF-8");
+  expect_error(csv_error_of(table.text()), 2, "", "UTF-8");
 }
 
 TEST(TimeHistoryCsvErrors, FileNamedInErrors) {
@@ -439,11 +404,25 @@ TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
       {"beta4 of sample 1 is -inf", [](Record& h) { h.beta(0, 3) = -std::numeric_limits<double>::infinity(); }},
       {"t of sample 3 is nan", [](Record& h) { h.t(2) = std::nan(""); }},
       {"t of sample 4", [](Record& h) { h.t(3) = h.t(2); }},
-      {"empty key", [](Record& h) { h.provenance.comments.push_back({"", "x"}); }},
-      {"contains ':'", [](Record& h) { h.provenance.comments.push_back({"a:b", "x"}); }},
-      {"line break", [](Record& h) { h.provenance.comments.push_back({"a", "x\ny"}); }},
-      {"blanks", [](Record& h) { h.provenance.comments.push_back({"a", " x"}); }},
-      {"UTF-8", [](Record& h) { h.provenance.comments.push_back({"a", "M\xFCller"}); }}};
+      {"empty key",
+       [](Record& h) {
+         h.provenance.comments.push_back({"", "x"});
+       }},
+      {"contains ':'",
+       [](Record& h) {
+         h.provenance.comments.push_back({"a:b", "x"});
+       }},
+      {"line break",
+       [](Record& h) {
+         h.provenance.comments.push_back({"a", "x\ny"});
+       }},
+      {"blanks",
+       [](Record& h) {
+         h.provenance.comments.push_back({"a", " x"});
+       }},
+      {"UTF-8", [](Record& h) {
+         h.provenance.comments.push_back({"a", "M\xFCller"});
+       }}};
   for (const auto& [words, breakage] : breakages) {
     Record h = good;
     breakage(h);
@@ -454,7 +433,7 @@ TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
     }
     EXPECT_THROW(io::format_record_csv(h), std::invalid_argument) << words;
-    EXPECT_TRUE(entries(dir.path()).empty()) << words;
+    EXPECT_TRUE(file_names(dir.path()).empty()) << words;
   }
   // An earlier file stays as it was.
   io::write_record_csv(file, good);
@@ -463,7 +442,7 @@ TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
   bad.beta(2, 2) = std::nan("");
   EXPECT_THROW(io::write_record_csv(file, bad), std::invalid_argument);
   EXPECT_EQ(read_text(file), before);
-  EXPECT_EQ(entries(file.parent_path()), std::set<std::string>{"h1.csv"});
+  EXPECT_EQ(file_names(file.parent_path()), std::set<std::string>{"h1.csv"});
 }
 
 // ---------------------------------------------------------------- sets of time histories
@@ -477,7 +456,7 @@ TEST(MeasurementSet, NaturalOrderAndOnlyCsvFiles) {
   }
   write_text(dir.path() / "notes.txt", "not a time history");
   write_text(dir.path() / "._h1.csv", "\x05\x16\x07 not a time history");  // macOS metadata beside h1.csv
-  fs::create_directories(dir.path() / "old.csv");           // a folder, not a file
+  fs::create_directories(dir.path() / "old.csv");                          // a folder, not a file
   const io::MeasurementSet set = io::read_measurement_set(dir.path());
   std::vector<std::string> order;
   for (const auto& f : set.files) order.push_back(f.filename().string());

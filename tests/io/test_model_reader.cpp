@@ -13,7 +13,7 @@ namespace {
 
 using test::replace_first;
 
-const char* kValid = R"(name: frame
+const char* kValidModel = R"(name: frame
 materials:
   steel: {E: 2.1e11, nu: 0.3, rho: 7850}
 beam_sections:
@@ -33,12 +33,12 @@ beams:
 )";
 
 // Parses `text` and returns the error; fails the test if none is thrown.
-io::InputError error_of(const std::string& text) {
+io::InputError model_error_of(const std::string& text) {
   return test::input_error_of([&] { io::parse_model(text, "bad.yaml"); }, "the text:\n" + text);
 }
 
 TEST(ModelReader, ReadsAValidModel) {
-  const io::ModelFile f = io::parse_model(kValid, "frame.yaml");
+  const io::ModelFile f = io::parse_model(kValidModel, "frame.yaml");
   EXPECT_EQ(f.name, "frame");
   EXPECT_EQ(f.model.nodes.size(), 5u);  // 2 given + 3 generated (one merged with node 2)
   EXPECT_EQ(f.model.beams.size(), 4u);
@@ -58,7 +58,7 @@ TEST(ModelFormats, ChosenByExtensionWithYamlAsDefault) {
     for (const auto& ext : f.extensions) EXPECT_EQ(&io::model_format_for("a" + ext), &f) << f.name << " " << ext;
   }
   test::TempDir dir("rigflex-model-formats");
-  test::write_text(dir.path() / "frame.Yml", kValid);
+  test::write_text(dir.path() / "frame.Yml", kValidModel);
   EXPECT_EQ(io::read_model(dir.path() / "frame.Yml").model.beams.size(), 4u);
   try {
     io::read_model(dir.path() / "absent.yaml");
@@ -69,82 +69,86 @@ TEST(ModelFormats, ChosenByExtensionWithYamlAsDefault) {
 }
 
 TEST(ModelReader, MalformedYamlNamesTheLine) {
-  const auto e = error_of("materials:\n  steel: {E: 1, nu: [0.3\n");
+  const auto e = model_error_of("materials:\n  steel: {E: 1, nu: [0.3\n");
   EXPECT_EQ(e.file(), "bad.yaml");
   EXPECT_GT(e.line(), 0);
   EXPECT_NE(std::string(e.what()).find("malformed YAML"), std::string::npos);
 }
 
 TEST(ModelReader, UnknownKeyNamesLineAndKey) {
-  const auto e = error_of(replace_first(kValid, "wall: 0.01}", "wall: 0.01, colour: red}"));
+  const auto e = model_error_of(replace_first(kValidModel, "wall: 0.01}", "wall: 0.01, colour: red}"));
   EXPECT_EQ(e.line(), 5);
   EXPECT_EQ(e.key(), "colour");
 }
 
 TEST(ModelReader, MissingKeyNamesLineAndKey) {
-  const auto e = error_of(replace_first(kValid, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
+  const auto e = model_error_of(
+      replace_first(kValidModel, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
   EXPECT_EQ(e.line(), 3);
   EXPECT_EQ(e.key(), "rho");
 }
 
 TEST(ModelReader, WrongTypeNamesLineAndKey) {
-  const auto e = error_of(replace_first(kValid, "elements: 3", "elements: three"));
+  const auto e = model_error_of(replace_first(kValidModel, "elements: 3", "elements: three"));
   EXPECT_EQ(e.line(), 11);
   EXPECT_EQ(e.key(), "elements");
 }
 
 TEST(ModelReader, NonPositiveModulus) {
-  const auto e = error_of(replace_first(kValid, "E: 2.1e11", "E: -2.1e11"));
+  const auto e = model_error_of(replace_first(kValidModel, "E: 2.1e11", "E: -2.1e11"));
   EXPECT_EQ(e.line(), 3);
   EXPECT_EQ(e.key(), "E");
 }
 
 TEST(ModelReader, NonPositiveDensity) {
-  const auto e = error_of(replace_first(kValid, "rho: 7850", "rho: 0"));
+  const auto e = model_error_of(replace_first(kValidModel, "rho: 7850", "rho: 0"));
   EXPECT_EQ(e.key(), "rho");
 }
 
 TEST(ModelReader, NonPositiveSectionDimension) {
-  const auto e = error_of(replace_first(kValid, "wall: 0.01", "wall: 0"));
+  const auto e = model_error_of(replace_first(kValidModel, "wall: 0.01", "wall: 0"));
   EXPECT_EQ(e.line(), 5);
   EXPECT_EQ(e.key(), "wall");
 }
 
 TEST(ModelReader, DuplicateNodeId) {
-  const auto e = error_of(replace_first(kValid, "  - [2, 0, 0, 2]", "  - [1, 0, 0, 2]"));
+  const auto e = model_error_of(replace_first(kValidModel, "  - [2, 0, 0, 2]", "  - [1, 0, 0, 2]"));
   EXPECT_EQ(e.line(), 9);
   EXPECT_NE(std::string(e.what()).find("duplicate node id 1"), std::string::npos);
 }
 
 TEST(ModelReader, ElementNamingAMissingNode) {
-  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
+  const auto e =
+      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("node 9"), std::string::npos);
 }
 
 TEST(ModelReader, ZeroLengthElement) {
-  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
+  const auto e =
+      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("zero length"), std::string::npos);
 }
 
 TEST(ModelReader, UnknownSection) {
-  const auto e = error_of(replace_first(kValid, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
+  const auto e =
+      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_EQ(e.key(), "section");
 }
 
 TEST(ModelReader, CouplingWhoseNodesCoincide) {
-  std::string text = kValid;
+  std::string text = kValidModel;
   text += "couplings:\n  - {id: c, reference: 2, nodes: [3]}\n";
   text = replace_first(text, "  - [2, 0, 0, 2]", "  - [2, 0, 0, 2]\n  - [3, 0, 0, 2.0]");
-  const auto e = error_of(text);
+  const auto e = model_error_of(text);
   EXPECT_EQ(e.key(), "nodes");
   EXPECT_NE(std::string(e.what()).find("coincides"), std::string::npos);
 }
 
 TEST(ModelReader, PositionThatMatchesNoNode) {
-  const auto e = error_of(replace_first(kValid, "at: [3, 0, 2]", "at: [3, 0, 2.5]"));
+  const auto e = model_error_of(replace_first(kValidModel, "at: [3, 0, 2]", "at: [3, 0, 2.5]"));
   EXPECT_EQ(e.line(), 15);
   EXPECT_EQ(e.key(), "at");
 }
@@ -162,19 +166,19 @@ nodes:
 shells:
   - {id: flat, nodes: [1, 2, 3, 4], section: plate}
 )";
-  const auto e = error_of(text);
+  const auto e = model_error_of(text);
   EXPECT_EQ(e.line(), 11);
 }
 
 TEST(ModelReader, NonPositiveThickness) {
-  const auto e = error_of("materials:\n  s: {E: 1e9, nu: 0.3, rho: 1000}\nshell_sections:\n  p: {material: s, thickness: -1}\nnodes:\n  - [1, 0, 0, 0]\n");
+  const auto e = model_error_of(
+      "materials:\n  s: {E: 1e9, nu: 0.3, rho: 1000}\nshell_sections:\n  p: {material: s, thickness: -1}\nnodes:\n  - "
+      "[1, 0, 0, 0]\n");
   EXPECT_EQ(e.line(), 4);
   EXPECT_EQ(e.key(), "thickness");
 }
 
-TEST(ModelReader, MissingFile) {
-  EXPECT_THROW(io::read_model("/nonexistent/model.yaml"), io::InputError);
-}
+TEST(ModelReader, MissingFile) { EXPECT_THROW(io::read_model("/nonexistent/model.yaml"), io::InputError); }
 
 }  // namespace
 }  // namespace rigflex

@@ -17,20 +17,21 @@
 #include <random>
 #include <set>
 
-#include "support/input_errors.hpp"
-#include "support/temp_files.hpp"
-#include "support/text_edits.hpp"
 #include "io/input_error.hpp"
 #include "io/json_fields.hpp"
 #include "io/matrix_market.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_mat.hpp"
+#include "support/awkward_doubles.hpp"
+#include "support/input_errors.hpp"
+#include "support/temp_files.hpp"
+#include "support/text_edits.hpp"
 
 namespace rigflex {
 namespace {
 
-using test::replace_first;
 using test::line_of;
+using test::replace_first;
 
 namespace fs = std::filesystem;
 using reduction::ReducedFrame;
@@ -40,69 +41,17 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 using test::read_text;
 using test::write_text;
 
-std::set<std::string> entries(const fs::path& dir) {
+std::set<std::string> files_below(const fs::path& dir) {
   std::set<std::string> out;
   if (!fs::exists(dir)) return out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) out.insert(fs::relative(e.path(), dir).string());
   return out;
 }
 
-// Doubles that break lossy formatting: random bit patterns (any exponent,
-// subnormals included), wide-range decimals, and hand-picked values.
-class Awkward {
- public:
-  double next() {
-    static const double special[] = {1.0 / 3,
-                                     -0.0,
-                                     1e-300,
-                                     std::numeric_limits<double>::denorm_min(),
-                                     std::numeric_limits<double>::min(),
-                                     std::numeric_limits<double>::max(),
-                                     std::numeric_limits<double>::lowest(),
-                                     0.1,
-                                     2.0 / 3,
-                                     -1e300};
-    switch (rng_() % 4) {
-      case 0:
-        for (;;) {
-          const double v = std::bit_cast<double>(static_cast<std::uint64_t>(rng_()));
-          if (std::isfinite(v)) return v;
-        }
-      case 1: {
-        const double mantissa = std::uniform_real_distribution<double>(-1, 1)(rng_);
-        return mantissa * std::pow(10.0, std::uniform_int_distribution<int>(-300, 300)(rng_));
-      }
-      case 2: return std::uniform_real_distribution<double>(-1e3, 1e3)(rng_);
-      default: return special[rng_() % std::size(special)];
-    }
-  }
-  Eigen::MatrixXd matrix(Eigen::Index rows, Eigen::Index cols) {
-    Eigen::MatrixXd A(rows, cols);
-    for (Eigen::Index j = 0; j < cols; ++j)
-      for (Eigen::Index i = 0; i < rows; ++i) A(i, j) = next();
-    return A;
-  }
-  Eigen::VectorXd vector(Eigen::Index n) { return matrix(n, 1); }
-  fe::Vec3 vec3() { return vector(3); }
-  fe::MassProperties mass() {
-    fe::MassProperties p;
-    p.mass = next();
-    p.cog = vec3();
-    // The record holds the six entries of a symmetric tensor.
-    p.inertia = matrix(3, 3);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < i; ++j) p.inertia(i, j) = p.inertia(j, i);
-    return p;
-  }
-
- private:
-  std::mt19937_64 rng_{20240611};
-};
-
 // Craig-Bampton, floating on a reference node, all six DOFs of three nodes,
 // three modes; every number awkward.
 ReducedFrame awkward_frame() {
-  Awkward a;
+  test::AwkwardDoubles a;
   ReducedFrame r;
   r.name = "awkward \"frame\"\twith \xc3\xbc";
   r.method = reduction::ReductionMethod::craig_bampton;
@@ -154,7 +103,7 @@ ReducedFrame awkward_frame() {
 // Guyan onto translations of a grounded frame: no modes, no reference node,
 // empty checks.
 ReducedFrame plain_frame() {
-  Awkward a;
+  test::AwkwardDoubles a;
   ReducedFrame r;
   r.name = "plain";
   r.interface_set = "joints";
@@ -268,7 +217,7 @@ void expect_error(const io::InputError& e, int line, const std::string& words) {
 }
 
 TEST(MatrixMarket, RoundTripIsBitExact) {
-  Awkward a;
+  test::AwkwardDoubles a;
   Eigen::MatrixXd A = a.matrix(9, 7);
   A(0, 0) = -0.0;
   A(1, 0) = std::numeric_limits<double>::denorm_min();
@@ -298,7 +247,7 @@ TEST(MatrixMarket, WriterRefusesNaNAndInfinity) {
       EXPECT_NE(std::string(e.what()).find("entry (2, 3)"), std::string::npos) << e.what();
     }
     EXPECT_THROW(io::write_matrix_market(dir.path() / "A.mtx", A, "a"), std::invalid_argument);
-    EXPECT_TRUE(entries(dir.path()).empty());
+    EXPECT_TRUE(files_below(dir.path()).empty());
   }
 }
 
@@ -306,26 +255,27 @@ TEST(MatrixMarket, ReadsCoordinateSymmetricAndIntegerFiles) {
   Eigen::MatrixXd expected(3, 2);
   expected << 1.5, 0, 0, 0, 0, -2e-3;
   expect_same(expected,
-              io::parse_matrix_market("%%MatrixMarket matrix coordinate real general\n% c\n\n3 2 2\n1 1 1.5\n3 2 -2e-3\n",
-                                      "c.mtx"),
+              io::parse_matrix_market(
+                  "%%MatrixMarket matrix coordinate real general\n% c\n\n3 2 2\n1 1 1.5\n3 2 -2e-3\n", "c.mtx"),
               "coordinate general");
 
   Eigen::MatrixXd sym(3, 3);
   sym << 1, 2, 0, 2, 0, 3, 0, 3, 4;
   expect_same(sym,
-              io::parse_matrix_market("%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 1\n2 1 2\n3 2 3\n3 3 4\n",
-                                      "s.mtx"),
+              io::parse_matrix_market(
+                  "%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 1\n2 1 2\n3 2 3\n3 3 4\n", "s.mtx"),
               "coordinate symmetric");
-  expect_same(sym, io::parse_matrix_market("%%MATRIXMARKET Matrix Array Integer Symmetric\n3 3\n1\n2\n0\n0\n+3\n4\n", "i.mtx"),
-              "array integer symmetric");
+  expect_same(
+      sym, io::parse_matrix_market("%%MATRIXMARKET Matrix Array Integer Symmetric\n3 3\n1\n2\n0\n0\n+3\n4\n", "i.mtx"),
+      "array integer symmetric");
 
   Eigen::MatrixXd skew(3, 3);
   skew << 0, -5, -6, 5, 0, -7, 6, 7, 0;
   expect_same(skew, io::parse_matrix_market("%%MatrixMarket matrix array real skew-symmetric\n3 3\n5\n6 7\n", "k.mtx"),
               "array skew-symmetric");
   expect_same(skew,
-              io::parse_matrix_market("%%MatrixMarket matrix coordinate integer skew-symmetric\n3 3 3\n2 1 5\n3 1 6\n3 2 7\n",
-                                      "k.mtx"),
+              io::parse_matrix_market(
+                  "%%MatrixMarket matrix coordinate integer skew-symmetric\n3 3 3\n2 1 5\n3 1 6\n3 2 7\n", "k.mtx"),
               "coordinate skew-symmetric");
 }
 
@@ -358,10 +308,10 @@ TEST(MatrixMarket, MalformedFilesNameTheLine) {
 
 TEST(MatrixMarket, ReadsTheFileItWrote) {
   test::TempDir dir("rigflex-export");
-  const Eigen::MatrixXd A = Awkward().matrix(4, 3);
+  const Eigen::MatrixXd A = test::AwkwardDoubles().matrix(4, 3);
   io::write_matrix_market(dir.path() / "A.mtx", A, "A");
   expect_same(A, io::read_matrix_market(dir.path() / "A.mtx"), "A");
-  EXPECT_EQ(entries(dir.path()), std::set<std::string>{"A.mtx"});
+  EXPECT_EQ(files_below(dir.path()), std::set<std::string>{"A.mtx"});
   try {
     io::read_matrix_market(dir.path() / "missing.mtx");
     ADD_FAILURE() << "no error for a missing file";
@@ -402,7 +352,7 @@ TEST(ReducedExport, RoundTripIsBitExact) {
   test::TempDir dir("rigflex-export");
   const ReducedFrame r = awkward_frame();
   io::write_reduced_frame(dir.path(), r);
-  EXPECT_EQ(entries(dir.path()), kExportFiles);
+  EXPECT_EQ(files_below(dir.path()), kExportFiles);
   const ReducedFrame back = io::read_reduced_frame(dir.path());
   expect_same(r, back);
   EXPECT_TRUE(std::signbit(back.interface_nodes[0].position.y()));
@@ -491,8 +441,9 @@ io::InputError mat_error(const fs::path& file) {
 TEST(ReducedExport, MatReaderRefusesWhatIsNotAReducedFrame) {
   test::TempDir dir("rigflex-export");
   const fs::path file = dir.path() / "x.mat";
-  write_text(file, "not a MAT file at all, but long enough to have a header of 128 bytes........................"
-                   ".......................................................................................");
+  write_text(file,
+             "not a MAT file at all, but long enough to have a header of 128 bytes........................"
+             ".......................................................................................");
   EXPECT_EQ(mat_error(file).file(), file.string());
   EXPECT_NE(std::string(mat_error(file).what()).find("not a MAT file"), std::string::npos);
   EXPECT_NE(std::string(mat_error(dir.path() / "none.mat").what()).find("cannot open"), std::string::npos);
@@ -544,8 +495,9 @@ TEST(ReducedExport, WriterRefusesWhatItCannotWriteExactly) {
   EXPECT_NE(refusal([](ReducedFrame& r) { r.K(3, 4) = kNaN; }).find("K(4, 5)"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.state_space.B(0, 0) = kInf; }).find("ss_B(1, 1)"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.checks.mac(1, 2) = kNaN; }).find("checks.mac[1][2]"), std::string::npos);
-  EXPECT_NE(refusal([](ReducedFrame& r) { r.checks.mass_full.cog.y() = kInf; }).find("checks.mass_properties.full.cog[1]"),
-            std::string::npos);
+  EXPECT_NE(
+      refusal([](ReducedFrame& r) { r.checks.mass_full.cog.y() = kInf; }).find("checks.mass_properties.full.cog[1]"),
+      std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.M.conservativeResize(20, 20); }).find("M is 20 x 20"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.mode_count = 2; }).find("mode frequencies"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.support = reduction::FrameSupport::free; }).find("reference node"),
@@ -562,10 +514,10 @@ TEST(ReducedExport, AFailingBatchLeavesNoFileBehind) {
   {
     io::FileBatch batch;
     io::add_reduced_frame_files(batch, out, awkward_frame());
-    EXPECT_TRUE(entries(out).empty()) << "files written before commit";
+    EXPECT_TRUE(files_below(out).empty()) << "files written before commit";
     batch.add(out / "later.txt", [](const fs::path&) { throw std::runtime_error("disk full"); });
     EXPECT_THROW(batch.commit(), std::runtime_error);
-    EXPECT_TRUE(entries(out).empty());
+    EXPECT_TRUE(files_below(out).empty());
   }
   // An earlier export survives a failed one untouched.
   const ReducedFrame first = plain_frame();
@@ -574,7 +526,7 @@ TEST(ReducedExport, AFailingBatchLeavesNoFileBehind) {
   io::add_reduced_frame_files(batch, out, awkward_frame());
   batch.add(out / "later.txt", [](const fs::path&) { throw std::runtime_error("disk full"); });
   EXPECT_THROW(batch.commit(), std::runtime_error);
-  EXPECT_EQ(entries(out), kExportFiles);
+  EXPECT_EQ(files_below(out), kExportFiles);
   expect_same(first, io::read_reduced_frame(out));
 }
 
@@ -655,9 +607,12 @@ TEST_F(ReducedImport, WrongValuesNameTheirLine) {
     EXPECT_EQ(e.file(), json_path().string());
     // A needle that occurs earlier than the value is harmless: then the
     // expected line is only a lower bound, and must still be reached.
-    if (c.key == "checks.mac[2]") EXPECT_GT(e.line(), line_of(text, "\"mac\": [")) << e.what();
-    else if (c.key == "damping.zeta") EXPECT_EQ(e.line(), line_of(text, "\"zeta\"")) << e.what();
-    else EXPECT_EQ(e.line(), line_of(text, c.needle)) << e.what();
+    if (c.key == "checks.mac[2]")
+      EXPECT_GT(e.line(), line_of(text, "\"mac\": [")) << e.what();
+    else if (c.key == "damping.zeta")
+      EXPECT_EQ(e.line(), line_of(text, "\"zeta\"")) << e.what();
+    else
+      EXPECT_EQ(e.line(), line_of(text, c.needle)) << e.what();
     EXPECT_NE(std::string(e.what()).find(c.words), std::string::npos) << e.what();
   }
 }

@@ -18,14 +18,14 @@
 namespace rigflex {
 namespace {
 
-using test::replace_first;
 using test::line_of;
+using test::replace_first;
 
 // Three vertical rods of 1 m at 0.4 m around P (|A - P - B| = L exactly), a
 // 100 kg body near the uniform disk of multifilar_rig() in
 // tests/support/rig_cases.hpp (Jzz a little below Jxx + Jyy, so that the products
 // of inertia keep the principal moments a triangle).
-const char* kValid = R"(name: three-rod
+const char* kValidRig = R"(name: three-rod
 geometry:
   gravity: 9.81
   reference_point: [0, 0, 0]
@@ -58,7 +58,7 @@ effects:
 
 // Reads `text` from a real file (the error must name it) and returns the
 // error; fails the test if there is none.
-io::InputError error_of(const std::string& text) {
+io::InputError rig_error_of(const std::string& text) {
   const test::TempDir dir("rigflex-rig-reader");
   const auto file = dir.path() / "bad-rig.yaml";
   test::write_text(file, text);
@@ -78,7 +78,7 @@ io::InputError error_of(const std::string& text) {
 
 // The error names `key` at the line holding `at`, and its message says `why`.
 void expect_error(const std::string& text, const std::string& at, const std::string& key, const std::string& why) {
-  const io::InputError e = error_of(text);
+  const io::InputError e = rig_error_of(text);
   EXPECT_EQ(e.line(), line_of(text, at)) << e.what();
   EXPECT_EQ(e.key(), key) << e.what();
   EXPECT_NE(e.reason().find(why), std::string::npos) << e.what();
@@ -86,7 +86,7 @@ void expect_error(const std::string& text, const std::string& at, const std::str
 
 TEST(RigReader, ReadsAValidRig) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "rig.yaml", kValid);
+  test::write_text(dir.path() / "rig.yaml", kValidRig);
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   EXPECT_EQ(m.name, "three-rod");
   EXPECT_EQ(m.geometry.gravity, 9.81);
@@ -112,7 +112,7 @@ TEST(RigReader, ReadsAValidRig) {
 
 TEST(RigReader, NameDefaultsToTheFileStem) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "bench rig .yaml", replace_first(kValid, "name: three-rod\n", ""));
+  test::write_text(dir.path() / "bench rig .yaml", replace_first(kValidRig, "name: three-rod\n", ""));
   // Blanks at the ends of the stem are trimmed: the name goes on a "# rig:" line.
   EXPECT_EQ(io::read_rig(dir.path() / "bench rig .yaml").name, "bench rig");
 }
@@ -133,84 +133,86 @@ TEST(RigReader, MissingFileNamesIt) {
 // are per-rod effect parameters with another count.
 
 TEST(RigReader, TwoRodsAreNotARig) {
-  const std::string two = replace_first(kValid,
-                                  "    - upper: [-0.2, -0.3464, 1.0]\n      lower: [-0.2, -0.3464, 0.0]\n"
-                                  "      length: 1.0\n      encoder_axis: [0, 1, 0]\n",
-                                  "");
+  const std::string two = replace_first(kValidRig,
+                                        "    - upper: [-0.2, -0.3464, 1.0]\n      lower: [-0.2, -0.3464, 0.0]\n"
+                                        "      length: 1.0\n      encoder_axis: [0, 1, 0]\n",
+                                        "");
   // A block list's line is that of its first entry.
   expect_error(two, "    - upper: [0.4", "geometry.rods", "3 or 4 rods (got 2)");
 }
 
 TEST(RigReader, EncoderOffsetWithAnotherRodCount) {
-  const std::string bad = replace_first(kValid, "alpha: [0.001, 0.002, 0.003]", "alpha: [0.001, 0.002]");
+  const std::string bad = replace_first(kValidRig, "alpha: [0.001, 0.002, 0.003]", "alpha: [0.001, 0.002]");
   expect_error(bad, "  encoder_offset:", "effects.encoder_offset.alpha", "list of 3 numbers");
 }
 
 TEST(RigReader, LoadCellGainWithAnotherRodCount) {
-  const std::string bad = replace_first(kValid, "gain: [1.0, 1.01, 0.99]", "gain: [1.0, 1.01, 0.99, 1.0]");
+  const std::string bad = replace_first(kValidRig, "gain: [1.0, 1.01, 0.99]", "gain: [1.0, 1.01, 0.99, 1.0]");
   expect_error(bad, "  load_cell_gain:", "effects.load_cell_gain.gain", "list of 3 numbers");
 }
 
 TEST(RigReader, RodLengthErrorWithAnotherRodCount) {
   // A block list: the error names the line where the list starts.
-  const std::string bad = std::string(kValid) + "  rod_length_error:\n    delta:\n      - 0.001\n      - 0.002\n";
+  const std::string bad = std::string(kValidRig) + "  rod_length_error:\n    delta:\n      - 0.001\n      - 0.002\n";
   expect_error(bad, "      - 0.001", "effects.rod_length_error.delta", "list of 3 numbers");
 }
 
 TEST(RigReader, JointPositionErrorWithAnotherRodCount) {
-  const std::string bad = std::string(kValid) + "  joint_position_error: {upper: [[0, 0, 0.001], [0, 0, 0]]}\n";
-  expect_error(bad, "  joint_position_error:", "effects.joint_position_error.upper", "one [x, y, z] per rod (3), got 2");
+  const std::string bad = std::string(kValidRig) + "  joint_position_error: {upper: [[0, 0, 0.001], [0, 0, 0]]}\n";
+  expect_error(bad, "  joint_position_error:", "effects.joint_position_error.upper",
+               "one [x, y, z] per rod (3), got 2");
 }
 
 // --- geometry
 
 TEST(RigReader, NonUnitEncoderAxis) {
-  const std::string bad = replace_first(kValid, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
+  const std::string bad =
+      replace_first(kValidRig, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
   expect_error(bad, "encoder_axis: [-1, 1, 0]", "geometry.rods[2].encoder_axis", "unit vector");
 }
 
 TEST(RigReader, NonHorizontalEncoderAxis) {
   // Unit, but tilted out of the horizontal plane.
-  const std::string bad = replace_first(kValid, "encoder_axis: [0, 1, 0]", "encoder_axis: [0, 0.6, 0.8]");
+  const std::string bad = replace_first(kValidRig, "encoder_axis: [0, 1, 0]", "encoder_axis: [0, 0.6, 0.8]");
   expect_error(bad, "encoder_axis: [0, 0.6, 0.8]", "geometry.rods[3].encoder_axis", "horizontal");
 }
 
 TEST(RigReader, RodThatCannotReach) {
   // |A - P - B| = 1 m at the nominal pose; 1.2 m is 20 % off, beyond the 5 % allowed.
-  const std::string bad = replace_first(kValid, "      length: 1.0\n      encoder_axis: [-0.5",
-                                  "      length: 1.2\n      encoder_axis: [-0.5");
+  const std::string bad = replace_first(kValidRig, "      length: 1.0\n      encoder_axis: [-0.5",
+                                        "      length: 1.2\n      encoder_axis: [-0.5");
   expect_error(bad, "length: 1.2", "geometry.rods[2].length", "cannot reach");
 }
 
 TEST(RigReader, RodGeometryKeysNameTheRod) {
-  const std::string bad = replace_first(kValid, "lower: [-0.2, -0.3464, 0.0]", "lower: [-0.2, -0.3464]");
+  const std::string bad = replace_first(kValidRig, "lower: [-0.2, -0.3464, 0.0]", "lower: [-0.2, -0.3464]");
   expect_error(bad, "lower: [-0.2, -0.3464]", "geometry.rods[3].lower", "3 numbers");
 }
 
 // --- body
 
 TEST(RigReader, NegativeMass) {
-  const std::string bad = replace_first(kValid, "mass: 100.0", "mass: -100.0");
+  const std::string bad = replace_first(kValidRig, "mass: 100.0", "mass: -100.0");
   expect_error(bad, "mass: -100.0", "body.mass", "must be positive");
 }
 
 TEST(RigReader, InertiaNotPositiveDefinite) {
   // Jxy = 7 > Jxx = Jyy = 6.25: principal moments -0.75, 12 and 13.25.
-  const std::string bad = replace_first(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
-                                  "inertia: [6.25, 6.25, 12.0, 7, 0, 0]");
+  const std::string bad = replace_first(kValidRig, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
+                                        "inertia: [6.25, 6.25, 12.0, 7, 0, 0]");
   expect_error(bad, "inertia: [6.25, 6.25, 12.0, 7, 0, 0]", "body.inertia", "positive definite");
 }
 
 TEST(RigReader, InertiaNoBodyCanHave) {
   // Positive definite, but Jzz > Jxx + Jyy: no mass distribution has it.
-  const std::string bad = replace_first(kValid, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
-                                  "inertia: [1, 1, 5, 0, 0, 0]");
+  const std::string bad =
+      replace_first(kValidRig, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]", "inertia: [1, 1, 5, 0, 0, 0]");
   expect_error(bad, "inertia: [1, 1, 5, 0, 0, 0]", "body.inertia", "triangle inequality");
 }
 
 TEST(RigReader, BodyUncertaintyDefaultsToAStaticReferenceAndARigidIdentification) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "rig.yaml", kValid);
+  test::write_text(dir.path() / "rig.yaml", kValidRig);
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   EXPECT_EQ(m.body_uncertainty.cog, rig::Vec3(0.003, 0.003, 0.007));
   EXPECT_FALSE(m.body_uncertainty.inertia.has_value());
@@ -219,9 +221,10 @@ TEST(RigReader, BodyUncertaintyDefaultsToAStaticReferenceAndARigidIdentification
 }
 
 TEST(RigReader, ReadsTheBodyUncertainty) {
-  const std::string text = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
-                                         "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
-                                         "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
+  const std::string text =
+      replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+                    "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
+                    "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
   const test::TempDir dir("rigflex-rig-reader");
   test::write_text(dir.path() / "rig.yaml", text);
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
@@ -231,14 +234,14 @@ TEST(RigReader, ReadsTheBodyUncertainty) {
 }
 
 TEST(RigReader, NegativeBodyUncertainty) {
-  const std::string bad = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+  const std::string bad = replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
                                         "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
                                         "  uncertainty: {cog: [0.001, -0.002, 0.004]}\n");
   expect_error(bad, "uncertainty: {cog", "body.uncertainty.cog", ">= 0");
 }
 
 TEST(RigReader, UnknownKeyInTheBodyUncertainty) {
-  const std::string bad = replace_first(kValid, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+  const std::string bad = replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
                                         "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
                                         "  uncertainty: {mass: 0.1}\n");
   expect_error(bad, "uncertainty: {mass", "body.uncertainty.mass", "unknown key");
@@ -246,11 +249,11 @@ TEST(RigReader, UnknownKeyInTheBodyUncertainty) {
 
 // --- the rods block: nominal axial stiffness and damping, plain keys
 
-std::string with_rods(const std::string& block) { return replace_first(kValid, "sensors:\n", block + "sensors:\n"); }
+std::string with_rods(const std::string& block) { return replace_first(kValidRig, "sensors:\n", block + "sensors:\n"); }
 
 TEST(RigReader, RodsAreRigidAndUndampedWithoutTheBlock) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "rig.yaml", kValid);
+  test::write_text(dir.path() / "rig.yaml", kValidRig);
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   EXPECT_TRUE(m.rods.stiffness.empty());
   EXPECT_TRUE(m.rods.damping.empty());
@@ -265,7 +268,7 @@ TEST(RigReader, ReadsTheRodsStiffnessAndDampingOnePerRodOrOneForAll) {
 }
 
 TEST(RigReader, RodsStiffnessFromYoungsModulusAndArea) {
-  // EA / L with L = 1 m for every rod of kValid.
+  // EA / L with L = 1 m for every rod of kValidRig.
   const test::TempDir dir("rigflex-rig-reader");
   test::write_text(dir.path() / "rig.yaml", with_rods("rods: {youngs_modulus: 2.1e11, area: [1e-4, 2e-4, 1e-4]}\n"));
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
@@ -325,19 +328,19 @@ TEST(RigReader, RodsTooSoftToHoldTheBodyNameTheirStiffness) {
 // --- keys and effects
 
 TEST(RigReader, UnknownTopLevelKey) {
-  const std::string bad = replace_first(kValid, "body:\n", "colour: red\nbody:\n");
+  const std::string bad = replace_first(kValidRig, "body:\n", "colour: red\nbody:\n");
   expect_error(bad, "colour: red", "colour", "unknown key");
 }
 
 TEST(RigReader, UnknownKeyInASection) {
-  const std::string bad = replace_first(kValid, "load_cell: {noise: 1.0}", "load_cell: {noise: 1.0, drift: 2}");
+  const std::string bad = replace_first(kValidRig, "load_cell: {noise: 1.0}", "load_cell: {noise: 1.0, drift: 2}");
   expect_error(bad, "load_cell: {noise", "sensors.load_cell.drift", "unknown key");
 }
 
 TEST(RigReader, UnknownEffectName) {
   // Refused even when switched off: a misspelt name is a mistake either way.
-  const std::string bad = std::string(kValid) + "  rod_complience: {stiffness: 1.0e7, enabled: false}\n";
-  const io::InputError e = error_of(bad);
+  const std::string bad = std::string(kValidRig) + "  rod_complience: {stiffness: 1.0e7, enabled: false}\n";
+  const io::InputError e = rig_error_of(bad);
   EXPECT_EQ(e.line(), line_of(bad, "rod_complience"));
   EXPECT_EQ(e.key(), "effects.rod_complience");
   EXPECT_NE(e.reason().find("unknown effect 'rod_complience'"), std::string::npos) << e.what();
@@ -345,59 +348,59 @@ TEST(RigReader, UnknownEffectName) {
 }
 
 TEST(RigReader, EffectMissingARequiredParameter) {
-  const std::string bad = std::string(kValid) + "  rod_length_error: {enabled: true}\n";
+  const std::string bad = std::string(kValidRig) + "  rod_length_error: {enabled: true}\n";
   expect_error(bad, "rod_length_error", "effects.rod_length_error.delta", "missing required key");
 }
 
 TEST(RigReader, EffectMissingAllOfItsOptions) {
-  const std::string bad = std::string(kValid) + "  joint_friction: {regularization: 0.01}\n";
+  const std::string bad = std::string(kValidRig) + "  joint_friction: {regularization: 0.01}\n";
   expect_error(bad, "joint_friction", "effects.joint_friction", "needs 'viscous'");
 }
 
 TEST(RigReader, EffectParameterOfTheWrongType) {
-  const std::string bad = std::string(kValid) + "  joint_friction: {viscous: 0.1, joints: middle}\n";
+  const std::string bad = std::string(kValidRig) + "  joint_friction: {viscous: 0.1, joints: middle}\n";
   expect_error(bad, "joint_friction", "effects.joint_friction.joints", "both, upper or lower");
 }
 
 TEST(RigReader, EffectParameterOutOfRange) {
-  const std::string bad = std::string(kValid) + "  rod_mass:\n    mass: -2.0\n";
+  const std::string bad = std::string(kValidRig) + "  rod_mass:\n    mass: -2.0\n";
   expect_error(bad, "mass: -2.0", "effects.rod_mass.mass", "must be >= 0");
 }
 
 TEST(RigReader, FrameModelThatDoesNotExist) {
-  const std::string bad =
-      std::string(kValid) + "  fixed_frame_flexibility:\n    model: no-such-frame.yaml\n    interface: upper_joints\n";
+  const std::string bad = std::string(kValidRig) +
+                          "  fixed_frame_flexibility:\n    model: no-such-frame.yaml\n    interface: upper_joints\n";
   expect_error(bad, "model: no-such-frame.yaml", "effects.fixed_frame_flexibility.model", "no such file");
 }
 
 // --- the rig's name goes on a "# rig: name" line of every measurement file
 
 TEST(RigReader, NameWithALineBreak) {
-  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"three\\nrod\"");
+  const std::string bad = replace_first(kValidRig, "name: three-rod", "name: \"three\\nrod\"");
   expect_error(bad, "name:", "name", "line break");
 }
 
 TEST(RigReader, NameWithAControlCharacter) {
-  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"three\\trod\"");
+  const std::string bad = replace_first(kValidRig, "name: three-rod", "name: \"three\\trod\"");
   expect_error(bad, "name:", "name", "control characters");
 }
 
 TEST(RigReader, NameWithBlanksAtTheEnds) {
   for (const char* name : {"\" three-rod\"", "\"three-rod \""}) {
-    const std::string bad = replace_first(kValid, "name: three-rod", std::string("name: ") + name);
+    const std::string bad = replace_first(kValidRig, "name: three-rod", std::string("name: ") + name);
     expect_error(bad, "name:", "name", "blank");
   }
 }
 
 TEST(RigReader, EmptyName) {
-  const std::string bad = replace_first(kValid, "name: three-rod", "name: \"\"");
+  const std::string bad = replace_first(kValidRig, "name: three-rod", "name: \"\"");
   expect_error(bad, "name:", "name", "empty");
 }
 
 // Frames given by their joint compliance (rig/joint_compliance.hpp), as
 // `rigflex diagnose` writes them, and the checks of such blocks.
 TEST(RigReader, FramesByJointCompliance) {
-  const std::string fixed = std::string(kValid) +
+  const std::string fixed = std::string(kValidRig) +
                             "  fixed_frame_flexibility:\n    joint_compliance:\n      joints: [[1e-6, 2e-6, 3e-7], "
                             "[1e-6, 2e-6, 3e-7], [1e-6, 2e-6, 3e-7]]\n      sway: [1e-6, 0]\n      twist: 1e-6\n"
                             "  carrying_frame_flexibility:\n    joint_compliance: {translation: [1e-6, 1e-6, 5e-7], "
@@ -407,22 +410,22 @@ TEST(RigReader, FramesByJointCompliance) {
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   EXPECT_NE(m.effect("fixed_frame_flexibility"), nullptr);
   EXPECT_NE(m.effect("carrying_frame_flexibility"), nullptr);
-  expect_error(replace_first(fixed, "[1e-6, 2e-6, 3e-7], [1e-6", "[1e-6, -2e-6, 3e-7], [1e-6"), "      joints:",
-               "effects.fixed_frame_flexibility.joint_compliance.joints", ">= 0");
-  expect_error(replace_first(fixed, "      twist: 1e-6", "      spin: 1e-6"), "      spin:",
-               "effects.fixed_frame_flexibility.joint_compliance.spin", "");
+  expect_error(replace_first(fixed, "[1e-6, 2e-6, 3e-7], [1e-6", "[1e-6, -2e-6, 3e-7], [1e-6"),
+               "      joints:", "effects.fixed_frame_flexibility.joint_compliance.joints", ">= 0");
+  expect_error(replace_first(fixed, "      twist: 1e-6", "      spin: 1e-6"),
+               "      spin:", "effects.fixed_frame_flexibility.joint_compliance.spin", "");
 }
 
 // An effect given twice in one rig file is an error, not the last one winning.
 TEST(RigReader, AnEffectGivenTwiceIsRefused) {
-  const std::string twice = std::string(kValid) + "  encoder_offset: {alpha: 0.0, beta: 0.0}\n";
+  const std::string twice = std::string(kValidRig) + "  encoder_offset: {alpha: 0.0, beta: 0.0}\n";
   expect_error(twice, "  encoder_offset: {alpha: 0.0", "effects.encoder_offset", "given twice");
 }
 
 // An effects file replaces the model's effect of the same name; `enabled: false` removes it.
 TEST(RigReader, EffectsFilesReplaceByName) {
   const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "rig.yaml", kValid);
+  test::write_text(dir.path() / "rig.yaml", kValidRig);
   rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   const size_t before = m.effects.size();
   test::write_text(dir.path() / "more.yaml", "effects:\n  rod_mass: {mass: 2.0}\n  encoder_offset: {enabled: false}\n");
@@ -433,8 +436,6 @@ TEST(RigReader, EffectsFilesReplaceByName) {
   test::write_text(dir.path() / "bad.yaml", "rod_mass: {mass: 2.0}\n");
   EXPECT_THROW(io::add_effects(m, dir.path() / "bad.yaml"), io::InputError);
 }
-
-
 
 // --- reading is pure: frames are reduced by rig::resolve_frames, a step of its own
 
@@ -456,7 +457,8 @@ TEST(RigSpec, ReadingReducesNoFrameAndResolvingGivesWhatReadRigGives) {
   EXPECT_EQ(rig::RigSpec{resolved}.pending_frames(), 0);
   const rig::RigModel direct = io::read_rig(file);
   ASSERT_EQ(resolved.effects.size(), direct.effects.size());
-  for (size_t i = 0; i < direct.effects.size(); ++i) EXPECT_STREQ(resolved.effects[i]->name(), direct.effects[i]->name());
+  for (size_t i = 0; i < direct.effects.size(); ++i)
+    EXPECT_STREQ(resolved.effects[i]->name(), direct.effects[i]->name());
   const auto* a = dynamic_cast<const rig::FixedFrameFlexibility*>(resolved.effect("fixed_frame_flexibility"));
   const auto* b = dynamic_cast<const rig::FixedFrameFlexibility*>(direct.effect("fixed_frame_flexibility"));
   ASSERT_NE(a, nullptr);
@@ -472,7 +474,7 @@ TEST(RigSpec, AFrameThatCannotBeReducedIsNamedWhenResolved) {
   std::filesystem::copy_file(std::filesystem::path(RIGFLEX_SOURCE_DIR) / "examples/beam-frame/model.yaml",
                              dir.path() / "frame.yaml");
   const std::string text =
-      std::string(kValid) + "  fixed_frame_flexibility:\n    model: frame.yaml\n    interface: no_such_set\n";
+      std::string(kValidRig) + "  fixed_frame_flexibility:\n    model: frame.yaml\n    interface: no_such_set\n";
   const std::filesystem::path file = dir.path() / "rig.yaml";
   test::write_text(file, text);
   const rig::RigSpec spec = io::read_rig_spec(file);  // read: the set is looked up only when reducing

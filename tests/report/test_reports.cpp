@@ -17,7 +17,7 @@
 namespace rigflex {
 namespace {
 
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 using namespace test;  // the synthetic inputs
 
@@ -40,17 +40,18 @@ TEST(CompareReport, HasEveryPlotAndSection) {
   const report::HtmlReport r = report::compare_report(comparison(), context(), study());
   // measured/model forces + angles, residual forces + angles, 2 spectra, trend, decay, study
   EXPECT_EQ(r.plot_count(), 9);
-  for (const char* s : {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces",
-                        "swing 0.54, 0.56 Hz", "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history",
-                        "v1 rig.yaml", "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck",
-                        "Warning: h2.csv: the model does not follow", "identified − reference", "zG (mm)", "3.50"})
+  for (const char* s :
+       {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces", "swing 0.54, 0.56 Hz",
+        "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history", "v1 rig.yaml",
+        "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck", "Warning: h2.csv: the model does not follow",
+        "identified − reference", "zG (mm)", "3.50"})
     EXPECT_TRUE(has(r, s)) << s;
   const nlohmann::json data = plot_data(r);
   ASSERT_EQ(data.size(), 9u);
-  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);     // forces measured and model
-  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);     // alpha and beta measured and model
-  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);     // angle residuals
-  EXPECT_EQ(data[4]["markers"].size(), 4u);            // the model's modes
+  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);  // forces measured and model
+  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);  // alpha and beta measured and model
+  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);  // angle residuals
+  EXPECT_EQ(data[4]["markers"].size(), 4u);         // the model's modes
   EXPECT_EQ(data[8]["categories"][0], "v1 rig.yaml");
 }
 
@@ -68,17 +69,17 @@ TEST(CompareReport, EmptyStudyAndMissingIdentification) {
 
 TEST(CompareReport, NonFiniteValuesAreGapsAndDashes) {
   diagnose::ModelComparison c = comparison();
-  c.overall_nrmse = nan;
-  c.nrmse(2) = nan;
-  c.histories[0].target.record.channels(10, 0) = nan;
+  c.overall_nrmse = kNaN;
+  c.nrmse(2) = kNaN;
+  c.histories[0].target.record.channels(10, 0) = kNaN;
   c.histories[0].model(11, 4) = std::numeric_limits<double>::infinity();
-  c.analysis.spectra.residual_force(3) = nan;
-  c.analysis.decay[1].measured_rate = nan;
-  c.analysis.trend_nrmse[2] = nan;
-  c.analysis.mode_frequencies_hz[0] = nan;
-  c.identified->properties.cog.z() = nan;
+  c.analysis.spectra.residual_force(3) = kNaN;
+  c.analysis.decay[1].measured_rate = kNaN;
+  c.analysis.trend_nrmse[2] = kNaN;
+  c.analysis.mode_frequencies_hz[0] = kNaN;
+  c.identified->properties.cog.z() = kNaN;
   std::vector<report::StudyEntry> s = study();
-  s[0].overall_nrmse = nan;
+  s[0].overall_nrmse = kNaN;
   report::HtmlReport r("");
   ASSERT_NO_THROW(r = report::compare_report(c, context(), s));
   EXPECT_EQ(r.plot_count(), 9);
@@ -127,9 +128,9 @@ TEST(DiagnosisReport, RanksEffectsAndAdvisesOnTheMissingOne) {
   const diagnose::Diagnosis d = diagnosis(true);
   const report::HtmlReport r = report::diagnosis_report(d, context());
   EXPECT_EQ(r.plot_count(), 3);  // ranking, baseline residual forces and angles
-  for (const char* s : {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance",
-                        "12.5 ± 0.4", "N s/m", "add air_drag to the rig file", "air_drag: {coefficient: 12.5}",
-                        "Missing effect: air_drag", "4.2 × the noise"})
+  for (const char* s :
+       {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance", "12.5 ± 0.4", "N s/m",
+        "add air_drag to the rig file", "air_drag: {coefficient: 12.5}", "Missing effect: air_drag", "4.2 × the noise"})
     EXPECT_TRUE(has(r, s)) << s;
   EXPECT_FALSE(has(r, "joint_friction *"));
   const nlohmann::json data = plot_data(r);
@@ -210,10 +211,10 @@ TEST(DiagnosisReport, NoSignificantEffect) {
 
 TEST(DiagnosisReport, NonFiniteValuesDoNotThrow) {
   diagnose::Diagnosis d = diagnosis(true);
-  d.ranking[1].explained_fraction = nan;
-  d.ranking[0].parameters[0].std = nan;
-  d.noise_ratio = nan;
-  d.baseline[0].target.record.channels(0, 0) = nan;
+  d.ranking[1].explained_fraction = kNaN;
+  d.ranking[0].parameters[0].std = kNaN;
+  d.noise_ratio = kNaN;
+  d.baseline[0].target.record.channels(0, 0) = kNaN;
   report::HtmlReport r("");
   ASSERT_NO_THROW(r = report::diagnosis_report(d, context()));
   EXPECT_EQ(r.plot_count(), 3);
@@ -225,9 +226,9 @@ TEST(IdentificationHtml, TablesAndNormalProbabilityAgainstTheReference) {
   const report::IdentificationReport rep = identification(true);
   const report::HtmlReport r = report::identification_html(rep);
   EXPECT_EQ(r.plot_count(), 2);  // one per algorithm
-  for (const char* s : {"rigid mean ± std", "flexible − reference", "zG − reference zG (mm)", "Welch t",
-                        "inside the rig", "s3", "normal line", "flexible algorithm: CoG height",
-                        "<td>861.45 ± 1.37</td>", "<td>4200.0</td>"})
+  for (const char* s :
+       {"rigid mean ± std", "flexible − reference", "zG − reference zG (mm)", "Welch t", "inside the rig", "s3",
+        "normal line", "flexible algorithm: CoG height", "<td>861.45 ± 1.37</td>", "<td>4200.0</td>"})
     EXPECT_TRUE(has(r, s)) << s;
   {  // no floating-point dust (4200 ± 1e-13) in the mass properties table
     const std::string h = r.html();
@@ -268,7 +269,7 @@ TEST(IdentificationHtml, StaticHeightWithTareMatchesTheJson) {
 
 TEST(IdentificationHtml, WithoutReferenceDifferencesFromTheMean) {
   report::IdentificationReport rep = identification(false);
-  rep.algorithms[0].records[2].cog.z() = nan;  // one set without a height: left out
+  rep.algorithms[0].records[2].cog.z() = kNaN;  // one set without a height: left out
   report::HtmlReport r("");
   ASSERT_NO_THROW(r = report::identification_html(rep));
   EXPECT_EQ(r.plot_count(), 2);

@@ -31,7 +31,6 @@
 //
 // Skipped (GTEST_SKIP) only when `ccx` is not on PATH.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -41,17 +40,15 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix.hpp"
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "require_ccx.hpp"
 #include "support/frame_models.hpp"
+#include "verification/calculix.hpp"
 
 namespace rigflex {
 namespace {
 namespace fs = std::filesystem;
-
-#define REQUIRE_CCX() \
-  if (!verification::calculix_available("ccx")) GTEST_SKIP() << "CalculiX (ccx) is not on PATH; cross-check skipped"
 
 using test::steel_model;
 
@@ -135,10 +132,10 @@ TEST(CalculixInput, WritesACompleteFrequencyDeck) {
   verification::CalculixOptions opt;
   opt.modes = 7;
   const std::string inp = verification::calculix_input(small_mixed_model(), opt);
-  for (const char* card : {"*NODE, NSET=NALL", "*ELEMENT, TYPE=B32R", "SECTION=RECT", "*ELEMENT, TYPE=S4,",
-                           "*SHELL SECTION", "*MATERIAL", "*ELASTIC", "*DENSITY", "*ELEMENT, TYPE=MASS",
-                           "*ELEMENT, TYPE=SPRING1", "*EQUATION", "*BOUNDARY", "*STEP\n*FREQUENCY\n7\n",
-                           "*NODE FILE\nU\n", "*END STEP"})
+  for (const char* card :
+       {"*NODE, NSET=NALL", "*ELEMENT, TYPE=B32R", "SECTION=RECT", "*ELEMENT, TYPE=S4,", "*SHELL SECTION", "*MATERIAL",
+        "*ELASTIC", "*DENSITY", "*ELEMENT, TYPE=MASS", "*ELEMENT, TYPE=SPRING1", "*EQUATION", "*BOUNDARY",
+        "*STEP\n*FREQUENCY\n7\n", "*NODE FILE\nU\n", "*END STEP"})
     EXPECT_NE(inp.find(card), std::string::npos) << card;
   // ccx reads at most 20 characters per field.
   std::istringstream lines(inp);
@@ -210,7 +207,7 @@ TEST(CalculixInput, ParsesTheEigenvalueTable) {
 // 0.3..0.7 % stiff; the torsion mode (343 Hz, +7 %) lies above the modes
 // compared.
 TEST(CalculixCrossCheck, RectangularCantileverOrientation) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   fe::Model m = steel_model();
   m.beam_sections["bar"] = test::rect_section("bar", 0.02, 0.05);  // width along local y, height along local z
   fe::NodeMerger merger(m);
@@ -239,7 +236,7 @@ TEST(CalculixCrossCheck, RectangularCantileverOrientation) {
 // shear over the flanges as well, rigflex over the webs) and torsion
 // (+22 %: ccx's BOX is a solid brick with wall integration points).
 TEST(CalculixCrossCheck, BoxCantileverWalls) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   fe::Model m = steel_model();
   m.beam_sections["box"] = test::box_section("box", 0.08, 0.12, 0.003, 0.008);
   fe::NodeMerger merger(m);
@@ -264,7 +261,7 @@ TEST(CalculixCrossCheck, BoxCantileverWalls) {
 // overestimates their torsion (see above), which enters the frame's
 // torsional and sway modes by up to 3 %.
 TEST(CalculixCrossCheck, BeamFrame) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   fe::Model m = steel_model();
   m.beam_sections["column"] = test::tube_section("column", 0.06, 0.004);
   m.beam_sections["cross"] = test::rect_section("cross", 0.03, 0.05);
@@ -298,13 +295,16 @@ fe::Model cantilever_plate(bool quadratic, int nx, int ny, bool block) {
   p.section = "plate";
   const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
   for (int r = 0; r < g.rows; ++r)
-    if (g.at(r, 0) != 0) m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
+    if (g.at(r, 0) != 0)
+      m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
   if (block) {
     // A 20 kg block 0.1 m above the middle of the free edge, rigidly coupled
     // to three edge nodes (couplings on shell nodes, MASS element).
     const fe::NodeId ref = m.add_node(m.next_node_id(), fe::Vec3(2.0, 0.5, 0.1));
     const int mid = g.rows / 2, step = quadratic ? 2 : 1, last = g.cols - 1;
-    m.couplings.push_back({"block", ref, {g.at(mid - step, last), g.at(mid, last), g.at(mid + step, last)},
+    m.couplings.push_back({"block",
+                           ref,
+                           {g.at(mid - step, last), g.at(mid, last), g.at(mid + step, last)},
                            {true, true, true, true, true, true}});
     m.point_masses.push_back({"block", ref, 20.0, {}});
   }
@@ -317,7 +317,7 @@ fe::Model cantilever_plate(bool quadratic, int nx, int ny, bool block) {
 // stiffness error (~5 %), a 5 % thickness error (~5 %: f ~ t) or a 5 %
 // density error (~2.5 %) fails.
 TEST(CalculixCrossCheck, Mitc4Plate) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   const Comparison c = compare(cantilever_plate(false, 32, 16, false), 10, "mitc4-plate");
   expect_modes_within(c, first_modes(10), 0.015);
 }
@@ -325,7 +325,7 @@ TEST(CalculixCrossCheck, Mitc4Plate) {
 // (c) 8-node shells, 16 x 8 (S8R = C3D20R). Measured: +0.03..+0.68 %
 // (+0.44 % at 24 x 12). Tolerance 1.5 %, as for MITC4.
 TEST(CalculixCrossCheck, Quad8Plate) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   const Comparison c = compare(cantilever_plate(true, 16, 8, false), 10, "quad8-plate");
   expect_modes_within(c, first_modes(10), 0.015);
 }
@@ -338,7 +338,7 @@ TEST(CalculixCrossCheck, Quad8Plate) {
 // changing with the mesh because the coupled segment does), so they are
 // not a test of either program. Tolerance 1.5 %.
 TEST(CalculixCrossCheck, Quad8PlateWithCoupledBlock) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("cross-check");
   const Comparison c = compare(cantilever_plate(true, 16, 8, true), 5, "quad8-plate-block");
   expect_modes_within(c, first_modes(5), 0.015);
   EXPECT_LT(c.ccx[0], 2.3) << "the 20 kg block must lower the first mode (2.57 Hz without it) in ccx too";

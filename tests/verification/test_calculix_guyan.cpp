@@ -15,7 +15,6 @@
 //
 // Skipped (GTEST_SKIP) only when `ccx` is not on PATH.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <Eigen/Dense>
@@ -28,16 +27,14 @@
 
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix.hpp"
 #include "reduction/frame_reduction.hpp"
+#include "require_ccx.hpp"
 #include "support/frame_models.hpp"
+#include "verification/calculix.hpp"
 
 namespace rigflex {
 namespace {
 namespace fs = std::filesystem;
-
-#define REQUIRE_CCX() \
-  if (!verification::calculix_available("ccx")) GTEST_SKIP() << "CalculiX (ccx) is not on PATH; oracle skipped"
 
 using SpMat = Eigen::SparseMatrix<double>;
 
@@ -80,10 +77,10 @@ TEST(CalculixMatrixFiles, ParsesTheUpperTriangle) {
       EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
     }
   };
-  fails_on_line("1 1 1.0\n2 1 1.0\n", "job.mas:2:");   // below the diagonal
-  fails_on_line("1 1 1.0\n1 4 1.0\n", "job.mas:2:");   // beyond the .dof size
-  fails_on_line("1 1 1.0\n1 2 x\n", "job.mas:2:");     // not a number
-  fails_on_line("1 1 1.0\n1 2 nan\n", "job.mas:2:");   // not finite
+  fails_on_line("1 1 1.0\n2 1 1.0\n", "job.mas:2:");           // below the diagonal
+  fails_on_line("1 1 1.0\n1 4 1.0\n", "job.mas:2:");           // beyond the .dof size
+  fails_on_line("1 1 1.0\n1 2 x\n", "job.mas:2:");             // not a number
+  fails_on_line("1 1 1.0\n1 2 nan\n", "job.mas:2:");           // not finite
   fails_on_line("1 1 1.0\n2 2 1.0\n1 1 2.0\n", "job.mas:3:");  // repeated
 }
 
@@ -122,9 +119,12 @@ Condensed condense(const SpMat& K, const SpMat& M, const std::vector<Eigen::Inde
     for (Eigen::Index c = 0; c < A.outerSize(); ++c)
       for (SpMat::InnerIterator it(A, c); it; ++it) {
         const Eigen::Index r = slot[static_cast<size_t>(it.row())], s = slot[static_cast<size_t>(it.col())];
-        if (r >= 0 && s >= 0) bb(r, s) = it.value();
-        else if (r < 0 && s >= 0) ib(-r - 2, s) = it.value();
-        else if (r < 0 && s < 0) ii.emplace_back(-r - 2, -s - 2, it.value());
+        if (r >= 0 && s >= 0)
+          bb(r, s) = it.value();
+        else if (r < 0 && s >= 0)
+          ib(-r - 2, s) = it.value();
+        else if (r < 0 && s < 0)
+          ii.emplace_back(-r - 2, -s - 2, it.value());
       }
   };
   split(K, kii, Kbb, Kib);
@@ -196,7 +196,7 @@ fe::Model table_frame(int elements_per_member) {
 // sigma = 1: 1.5e-4 on the first eigenvalue) moves them by more; without
 // the MASS element the first eigenvalue is 39 % higher.
 TEST(CalculixMatrixStorage, ReproducesCcxsOwnEigenvalues) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("oracle");
   fe::Model m = steel();
   fe::NodeMerger merger(m);
   const auto column = member(m, merger, "column", fe::Vec3(0, 0, 0), fe::Vec3(0, 0, 1.0), 4, "column");
@@ -232,13 +232,13 @@ TEST(CalculixMatrixStorage, ReproducesCcxsOwnEigenvalues) {
   // M is singular (the massless knot anchor), K is not (grounded): the
   // largest mu of M x = mu K x are the smallest 1 / lambda.
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(c.M), Eigen::MatrixXd(c.K),
-                                                                 Eigen::EigenvaluesOnly);
+                                                               Eigen::EigenvaluesOnly);
   ASSERT_EQ(es.info(), Eigen::Success);
   const Eigen::VectorXd mu = es.eigenvalues();  // ascending
   for (size_t k = 0; k < f.eigenvalues.size(); ++k) {
     const double lambda = 1.0 / mu(mu.size() - 1 - static_cast<Eigen::Index>(k));
-    EXPECT_NEAR(lambda / f.eigenvalues[k], 1.0, 1e-5) << "mode " << k + 1 << ": from ccx's matrices " << lambda
-                                                     << ", ccx " << f.eigenvalues[k];
+    EXPECT_NEAR(lambda / f.eigenvalues[k], 1.0, 1e-5)
+        << "mode " << k + 1 << ": from ccx's matrices " << lambda << ", ccx " << f.eigenvalues[k];
   }
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
@@ -315,7 +315,7 @@ Eigen::VectorXd frequencies_hz(const Eigen::MatrixXd& k, const Eigen::MatrixXd& 
 // this mesh: consistent vs lumped beam mass and rotary inertia (< 0.3 % in
 // M_r), Timoshenko vs Euler-Bernoulli (slender members).
 TEST(CalculixGuyanOracle, TableFrameJoints) {
-  REQUIRE_CCX();
+  REQUIRE_CCX("oracle");
   const fe::Model m = table_frame(16);
   const std::vector<fe::NodeId> joints = m.node_sets.at("joints");
 
