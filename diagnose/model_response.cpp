@@ -32,14 +32,12 @@ ResponseModel::ResponseModel(const rig::RigModel& model) : system(model), linear
   double swing = 0, deformation = 0;
   for (const auto& m : linearization.modes) {
     if (m.kind == rig::RigModeKind::swing) swing = std::max(swing, m.frequency_hz);
-    if (m.kind == rig::RigModeKind::deformation && deformation == 0)
-      deformation = std::min(m.frequency_hz, kResolveCapHz);
+    if (m.kind == rig::RigModeKind::deformation && deformation == 0) deformation = std::min(m.frequency_hz, kResolveCapHz);
   }
   resolve_hz = model.simulation.resolve_hz > 0 ? model.simulation.resolve_hz : std::max(swing, deformation);
   for (int k = 0; k < static_cast<int>(linearization.modes.size()); ++k) {
     const rig::RigMode& mode = linearization.modes[static_cast<size_t>(k)];
-    if (mode.kind == rig::RigModeKind::deformation && mode.frequency_hz <= resolve_hz * (1 + 1e-9))
-      elastic_modes.push_back(k);
+    if (mode.kind == rig::RigModeKind::deformation && mode.frequency_hz <= resolve_hz * (1 + 1e-9)) elastic_modes.push_back(k);
   }
 }
 

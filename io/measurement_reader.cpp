@@ -138,8 +138,8 @@ class MeasurementFileReader {
     return rods;
   }
 
-  std::vector<size_t> required(size_t line, const std::vector<std::string_view>& names, const Found& found, Quantity q,
-                               int rods) const {
+  std::vector<size_t> required(size_t line, const std::vector<std::string_view>& names, const Found& found,
+                               Quantity q, int rods) const {
     std::vector<size_t> out;
     for (int k = 1; k <= rods; ++k) {
       const auto it = found.find(k);
@@ -195,9 +195,9 @@ class MeasurementFileReader {
       t[r] = value(layout.time);
       // `line` is this row's 0-based index, so also the previous row's 1-based number.
       if (r > 0 && !(t[r] > t[r - 1]))
-        fail(line, "t",
-             "time " + quoted(fields[layout.time]) + " is not after the previous sample's " + number_text(t[r - 1]) +
-                 " (line " + std::to_string(line) + "): time must strictly increase");
+        fail(line, "t", "time " + quoted(fields[layout.time]) + " is not after the previous sample's " +
+                            number_text(t[r - 1]) + " (line " + std::to_string(line) +
+                            "): time must strictly increase");
       for (size_t k = 0; k < rods; ++k) {
         force[r * rods + k] = value(layout.force[k]);
         alpha[r * rods + k] = value(layout.alpha[k]);

@@ -19,11 +19,12 @@ void check_sizes(const rig::Record& h) {
   const Eigen::Index n = h.force.cols(), rows = h.t.size();
   if (rows == 0) refuse_history("no samples");
   if (n == 0) refuse_history("no rods (force has no columns)");
-  for (const auto& [A, name] :
-       {std::pair<const Eigen::MatrixXd*, const char*>{&h.force, "force"}, {&h.alpha, "alpha"}, {&h.beta, "beta"}})
+  for (const auto& [A, name] : {std::pair<const Eigen::MatrixXd*, const char*>{&h.force, "force"},
+                                {&h.alpha, "alpha"},
+                                {&h.beta, "beta"}})
     if (A->rows() != rows || A->cols() != n)
       refuse_history(std::string(name) + " is " + std::to_string(A->rows()) + " x " + std::to_string(A->cols()) +
-                     ", expected " + std::to_string(rows) + " x " + std::to_string(n) + " (samples x rods)");
+             ", expected " + std::to_string(rows) + " x " + std::to_string(n) + " (samples x rods)");
 }
 
 void check_values(const rig::Record& h) {
@@ -32,7 +33,7 @@ void check_values(const rig::Record& h) {
     if (!std::isfinite(h.t(i))) refuse_history("t" + sample(i) + " is " + number_text(h.t(i)));
     if (i > 0 && !(h.t(i) > h.t(i - 1)))
       refuse_history("t" + sample(i) + " (" + number_text(h.t(i)) + ") is not after the previous sample's (" +
-                     number_text(h.t(i - 1)) + "): time must strictly increase");
+             number_text(h.t(i - 1)) + "): time must strictly increase");
   }
   for (const auto& [A, q] : {std::pair<const Eigen::MatrixXd*, Quantity>{&h.force, Quantity::force},
                              {&h.alpha, Quantity::alpha},

@@ -40,9 +40,9 @@ class ModelFileReader {
 
   void read(const YAML::Node& root) {
     c_.expect_map(root, "model file",
-                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets", "beams",
-                   "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame", "point_masses",
-                   "springs", "supports", "couplings"});
+                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets",
+                   "beams", "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame",
+                   "point_masses", "springs", "supports", "couplings"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
@@ -161,8 +161,7 @@ class ModelFileReader {
       if (!b.IsSequence() || b.size() != 2) c_.fail(b, "box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
       const Vec3 lo = c_.as_vec3(b[0], "box"), hi = c_.as_vec3(b[1], "box");
       for (const fe::Node& node : m_.nodes)
-        if ((node.x.array() >= lo.array() - kNodeTolerance).all() &&
-            (node.x.array() <= hi.array() + kNodeTolerance).all())
+        if ((node.x.array() >= lo.array() - kNodeTolerance).all() && (node.x.array() <= hi.array() + kNodeTolerance).all())
           out.push_back(node.id);
       if (out.empty()) c_.fail(b, "box", "no node inside the box");
     }
@@ -197,8 +196,8 @@ class ModelFileReader {
   }
   void beam_section(const std::string& name, const YAML::Node& n) {
     c_.expect_map(n, "beam section '" + name + "'",
-                  {"material", "shape", "width", "height", "diameter", "wall", "web_thickness", "flange_thickness", "A",
-                   "Iy", "Iz", "J", "shear_area_y", "shear_area_z"});
+                  {"material", "shape", "width", "height", "diameter", "wall", "web_thickness", "flange_thickness",
+                   "A", "Iy", "Iz", "J", "shear_area_y", "shear_area_z"});
     src_.add("beam_section", name, n);
     fe::BeamSection s;
     s.name = name;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "fe/dof.hpp"
-#include "io/mass_record.hpp"
 #include "io/matrix_market.hpp"
+#include "io/mass_record.hpp"
 #include "io/reduced_layout.hpp"
 #include "io/reduced_mat.hpp"
 
@@ -23,9 +23,7 @@ namespace layout = reduced_layout;
 // Node ids up to this travel exactly through the doubles of reduced.mat.
 constexpr long kLargestExactId = 1L << 53;
 
-[[noreturn]] void refuse_export(const std::string& what) {
-  throw std::invalid_argument("reduced frame export: " + what);
-}
+[[noreturn]] void refuse_export(const std::string& what) { throw std::invalid_argument("reduced frame export: " + what); }
 
 std::string size_text(Eigen::Index rows, Eigen::Index cols) {
   return std::to_string(rows) + " x " + std::to_string(cols);
@@ -39,16 +37,15 @@ std::string number_text(double v) {
 
 void require_size(const Eigen::MatrixXd& A, layout::MatrixSize size, const std::string& name, const std::string& why) {
   if (A.rows() != size.rows || A.cols() != size.cols)
-    refuse_export(name + " is " + size_text(A.rows(), A.cols()) + ", expected " + size_text(size.rows, size.cols) +
-                  " (" + why + ")");
+    refuse_export(name + " is " + size_text(A.rows(), A.cols()) + ", expected " + size_text(size.rows, size.cols) + " (" +
+           why + ")");
 }
 
 void require_finite(const Eigen::MatrixXd& A, const std::string& name) {
   for (Eigen::Index j = 0; j < A.cols(); ++j)
     for (Eigen::Index i = 0; i < A.rows(); ++i)
       if (!std::isfinite(A(i, j)))
-        refuse_export(name + "(" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is " +
-                      number_text(A(i, j)));
+        refuse_export(name + "(" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ") is " + number_text(A(i, j)));
 }
 
 void require_finite(const ordered_json& j, const std::string& path) {
@@ -64,42 +61,37 @@ void check_structure(const ReducedFrame& r) {
   const bool needs_reference = r.support == reduction::FrameSupport::reference_node;
   if (needs_reference != r.reference_node.has_value())
     refuse_export(needs_reference ? "support 'reference-node' without a reference node"
-                                  : std::string("a reference node with support '") + to_string(r.support) + "'");
+                           : std::string("a reference node with support '") + to_string(r.support) + "'");
   std::set<fe::NodeId> nodes;
   for (const auto& n : r.interface_nodes) {
     if (!nodes.insert(n.id).second) refuse_export("interface node " + std::to_string(n.id) + " listed twice");
     if (n.id > kLargestExactId || n.id < -kLargestExactId)
-      refuse_export("interface node id " + std::to_string(n.id) +
-                    " is beyond 2^53, which reduced.mat cannot hold exactly");
+      refuse_export("interface node id " + std::to_string(n.id) + " is beyond 2^53, which reduced.mat cannot hold exactly");
   }
   std::set<std::pair<fe::NodeId, int>> dofs;
   for (const auto& d : r.interface_dofs) {
-    if (!nodes.count(d.node))
-      refuse_export("interface DOF of node " + std::to_string(d.node) + ", which is not an interface node");
+    if (!nodes.count(d.node)) refuse_export("interface DOF of node " + std::to_string(d.node) + ", which is not an interface node");
     if (d.local < 0 || d.local >= fe::kDofsPerNode)
-      refuse_export("interface DOF " + std::to_string(d.local) + " of node " + std::to_string(d.node) +
-                    " is not in 0..5");
+      refuse_export("interface DOF " + std::to_string(d.local) + " of node " + std::to_string(d.node) + " is not in 0..5");
     if (!dofs.insert({d.node, d.local}).second)
       refuse_export("interface DOF " + std::string(fe::dof_name(d.local)) + " of node " + std::to_string(d.node) +
-                    " listed twice");
+             " listed twice");
   }
   const size_t per_node = r.retained == reduction::InterfaceDofs::translations ? 3 : 6;
   if (r.interface_dofs.size() != per_node * r.interface_nodes.size())
-    refuse_export(std::to_string(r.interface_dofs.size()) + " interface DOFs for " +
-                  std::to_string(r.interface_nodes.size()) + " interface nodes with retained DOFs '" +
-                  to_string(r.retained) + "'");
+    refuse_export(std::to_string(r.interface_dofs.size()) + " interface DOFs for " + std::to_string(r.interface_nodes.size()) +
+           " interface nodes with retained DOFs '" + to_string(r.retained) + "'");
   for (const auto& d : r.checks.static_support)
     if (d.local < 0 || d.local >= fe::kDofsPerNode)
-      refuse_export("static_support DOF " + std::to_string(d.local) + " of node " + std::to_string(d.node) +
-                    " is not in 0..5");
+      refuse_export("static_support DOF " + std::to_string(d.local) + " of node " + std::to_string(d.node) + " is not in 0..5");
   if (r.mode_count < 0) refuse_export("negative mode count");
   if (r.mode_frequencies_hz.size() != r.mode_count)
-    refuse_export(std::to_string(r.mode_frequencies_hz.size()) + " mode frequencies for " +
-                  std::to_string(r.mode_count) + " modes");
+    refuse_export(std::to_string(r.mode_frequencies_hz.size()) + " mode frequencies for " + std::to_string(r.mode_count) +
+           " modes");
   if (r.full_free_dofs < 0) refuse_export("negative full_free_dofs");
   if (r.checks.damping_ratios.size() != r.checks.reduced_frequencies_hz.size())
     refuse_export(std::to_string(r.checks.damping_ratios.size()) + " damping ratios for " +
-                  std::to_string(r.checks.reduced_frequencies_hz.size()) + " reduced frequencies");
+           std::to_string(r.checks.reduced_frequencies_hz.size()) + " reduced frequencies");
 
   const Eigen::Index m = r.interface_dof_count();
   const Eigen::Index n = m + r.mode_count;
@@ -138,9 +130,7 @@ ordered_json checks_json(const reduction::ReductionChecks& c) {
   return {{"frequencies", frequencies},
           {"mac", mac},
           {"rigid_body_modes",
-           {{"full", c.rigid_body_modes_full},
-            {"reduced", c.rigid_body_modes_reduced},
-            {"residual", c.rigid_body_residual}}},
+           {{"full", c.rigid_body_modes_full}, {"reduced", c.rigid_body_modes_reduced}, {"residual", c.rigid_body_residual}}},
           {"mass_properties",
            {{"comparable", c.mass_comparable},
             {"full", ordered_json(mass_properties_json(c.mass_full))},
@@ -212,8 +202,8 @@ void add_reduced_frame_files(FileBatch& batch, const std::filesystem::path& dir,
   std::string json = reduced_json_text(r);
   std::vector<std::pair<std::string, std::string>> matrices;
   for (const auto& f : layout::kMatrixFiles)
-    matrices.emplace_back(
-        f.file, matrix_market_text(layout::matrix(r, f.key), "rigflex reduced frame '" + r.name + "': " + f.what));
+    matrices.emplace_back(f.file, matrix_market_text(layout::matrix(r, f.key),
+                                                     "rigflex reduced frame '" + r.name + "': " + f.what));
   add_reduced_mat_file(batch, dir / layout::kMatFile, r);
   for (auto& [file, text] : matrices) batch.add_text(dir / file, std::move(text));
   batch.add_text(dir / layout::kJsonFile, std::move(json));

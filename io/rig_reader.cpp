@@ -398,9 +398,8 @@ InputError no_equilibrium_error(const std::filesystem::path& file, const rig::Ri
       if (name == "rod_compliance" || name == "fixed_frame_flexibility" || name == "carrying_frame_flexibility" ||
           name == "rod_length_error" || name == "joint_position_error") {
         key = "effects." + name;
-        advice =
-            "with this effect the rig holds the body nowhere near the nominal pose (too soft, or too large an "
-            "error?)";
+        advice = "with this effect the rig holds the body nowhere near the nominal pose (too soft, or too large an "
+                 "error?)";
         break;
       }
     }

@@ -31,7 +31,8 @@ double min_relative_pivot(const Eigen::LLT<Eigen::MatrixXd>& llt, const Eigen::M
 Eigen::Index finite_count(const Eigen::MatrixXd& M) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M, Eigen::EigenvaluesOnly);
   const double largest = eig.eigenvalues().cwiseAbs().maxCoeff();
-  const double tiny = 100.0 * static_cast<double>(M.rows()) * std::numeric_limits<double>::epsilon() * largest;
+  const double tiny = 100.0 * static_cast<double>(M.rows()) *
+                      std::numeric_limits<double>::epsilon() * largest;
   return (eig.eigenvalues().array() > tiny).count();
 }
 
@@ -40,7 +41,8 @@ void validate(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int count, dou
     throw std::invalid_argument("solve_dense: K and M must be square and of equal size");
   }
   if (count < 1 || count > K.rows()) {
-    throw std::invalid_argument("solve_dense: count must lie in [1, n] (got " + std::to_string(count) + ")");
+    throw std::invalid_argument("solve_dense: count must lie in [1, n] (got " +
+                                std::to_string(count) + ")");
   }
   if (!std::isfinite(shift)) throw std::invalid_argument("solve_dense: shift must be finite");
 }
@@ -90,8 +92,10 @@ EigenResult solve_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int 
   r.vectors = std::move(X);
   r.converged_count = static_cast<int>(k);
   r.converged = k == count;
-  r.message = r.converged ? "converged" : "only " + std::to_string(k) + " finite eigenvalues (M is singular)";
-  r.iteration_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.message = r.converged ? "converged"
+                          : "only " + std::to_string(k) + " finite eigenvalues (M is singular)";
+  r.iteration_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   check_eigenpairs(Ks, Ms, r);
   return r;
 }

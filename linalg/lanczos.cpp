@@ -47,7 +47,8 @@ bool use_dense(const EigenOptions& options, Index n) {
 
 // The iteration on a checked factorization; the pairs are not yet
 // post-processed (see finish).
-EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options, SparseCholesky& factor_at_shift) {
+EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
+                    SparseCholesky& factor_at_shift) {
   check_sizes(K, M);
   options.validate(K.rows());
   if (!factor_at_shift.factorized() || factor_at_shift.rows() != K.rows()) {

@@ -39,13 +39,16 @@ std::string not_definite_message(double sigma, const FactorStatus& status, bool 
   } else if (!status.message.empty()) {
     text += " (" + status.message + ")";
   }
-  text += user_shift ? ": the shift must lie below the lowest eigenvalue" : ": K or M is not positive semidefinite";
+  text += user_shift ? ": the shift must lie below the lowest eigenvalue"
+                     : ": K or M is not positive semidefinite";
   return text;
 }
 
 }  // namespace
 
-double default_shift(const SpMat& K, const SpMat& M) { return -kDefaultShiftFactor * pencil_scale(K, M); }
+double default_shift(const SpMat& K, const SpMat& M) {
+  return -kDefaultShiftFactor * pencil_scale(K, M);
+}
 
 PencilFactorization factorize_pencil(const SpMat& K, const SpMat& M, std::optional<double> shift,
                                      SparseCholesky& factor) {

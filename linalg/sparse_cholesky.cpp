@@ -53,7 +53,8 @@ void for_each_upper(const std::vector<Term>& terms, Eigen::Index j, Visit&& visi
   for (const Term& t : terms) {
     const SpMat& m = *t.matrix;
     const Eigen::Index begin = m.outerIndexPtr()[j];
-    const Eigen::Index end = m.isCompressed() ? m.outerIndexPtr()[j + 1] : begin + m.innerNonZeroPtr()[j];
+    const Eigen::Index end =
+        m.isCompressed() ? m.outerIndexPtr()[j + 1] : begin + m.innerNonZeroPtr()[j];
     cursors[count++] = {m.innerIndexPtr(), m.valuePtr(), begin, end, t.scale};
   }
   bool diagonal_seen = false;
@@ -80,8 +81,9 @@ void for_each_upper(const std::vector<Term>& terms, Eigen::Index j, Visit&& visi
 // form, with values (or the pattern only). Under the identity the rows of
 // each column come out sorted; permuted, they do not, and nothing that
 // reads them needs them to be.
-cholmod_sparse* permuted_lower(const std::vector<Term>& terms, Eigen::Index n, const std::vector<Long>& inverse_perm,
-                               bool values, cholmod_common& common) {
+cholmod_sparse* permuted_lower(const std::vector<Term>& terms, Eigen::Index n,
+                               const std::vector<Long>& inverse_perm, bool values,
+                               cholmod_common& common) {
   auto position = [&](Eigen::Index i) {
     return inverse_perm.empty() ? static_cast<Long>(i) : inverse_perm[static_cast<size_t>(i)];
   };
@@ -90,8 +92,9 @@ cholmod_sparse* permuted_lower(const std::vector<Term>& terms, Eigen::Index n, c
   std::vector<Long> counts(static_cast<size_t>(n) + 1, 0);
   for (Eigen::Index j = 0; j < n; ++j) {
     const Long pj = position(j);
-    for_each_upper(terms, j,
-                   [&](Eigen::Index i, double) { ++counts[static_cast<size_t>(std::min(position(i), pj)) + 1]; });
+    for_each_upper(terms, j, [&](Eigen::Index i, double) {
+      ++counts[static_cast<size_t>(std::min(position(i), pj)) + 1];
+    });
   }
   for (size_t c = 1; c < counts.size(); ++c) counts[c] += counts[c - 1];
   const auto nnz = static_cast<size_t>(counts.back());
@@ -138,34 +141,23 @@ using SparseHandle = std::unique_ptr<cholmod_sparse, SparseDeleter>;
 
 int cholmod_kind(FactorKind kind) {
   switch (kind) {
-    case FactorKind::simplicial:
-      return CHOLMOD_SIMPLICIAL;
-    case FactorKind::supernodal:
-      return CHOLMOD_SUPERNODAL;
-    case FactorKind::automatic:
-      break;
+    case FactorKind::simplicial: return CHOLMOD_SIMPLICIAL;
+    case FactorKind::supernodal: return CHOLMOD_SUPERNODAL;
+    case FactorKind::automatic: break;
   }
   return CHOLMOD_AUTO;
 }
 
 std::string cholmod_status_text(int status) {
   switch (status) {
-    case CHOLMOD_OUT_OF_MEMORY:
-      return "CHOLMOD ran out of memory";
-    case CHOLMOD_TOO_LARGE:
-      return "CHOLMOD: problem too large (integer overflow)";
-    case CHOLMOD_INVALID:
-      return "CHOLMOD: invalid input";
-    case CHOLMOD_NOT_INSTALLED:
-      return "CHOLMOD: method not installed";
-    case CHOLMOD_GPU_PROBLEM:
-      return "CHOLMOD: GPU problem";
-    case CHOLMOD_NOT_POSDEF:
-      return "matrix is not positive definite";
-    case CHOLMOD_DSMALL:
-      return "CHOLMOD: tiny diagonal entry in the factor";
-    default:
-      return "CHOLMOD status " + std::to_string(status);
+    case CHOLMOD_OUT_OF_MEMORY: return "CHOLMOD ran out of memory";
+    case CHOLMOD_TOO_LARGE: return "CHOLMOD: problem too large (integer overflow)";
+    case CHOLMOD_INVALID: return "CHOLMOD: invalid input";
+    case CHOLMOD_NOT_INSTALLED: return "CHOLMOD: method not installed";
+    case CHOLMOD_GPU_PROBLEM: return "CHOLMOD: GPU problem";
+    case CHOLMOD_NOT_POSDEF: return "matrix is not positive definite";
+    case CHOLMOD_DSMALL: return "CHOLMOD: tiny diagonal entry in the factor";
+    default: return "CHOLMOD status " + std::to_string(status);
   }
 }
 
@@ -174,7 +166,7 @@ std::string cholmod_status_text(int status) {
 struct SparseCholesky::Impl {
   explicit Impl(FactorKind k) : kind(k) {
     cholmod_l_start(&common);
-    common.print = 0;                // library code never prints
+    common.print = 0;               // library code never prints
     common.error_handler = nullptr;  // status is read from common.status
     common.supernodal = cholmod_kind(kind);
   }
@@ -262,7 +254,8 @@ std::vector<Long> SparseCholesky::Impl::inverse_permutation() const {
 // cholmod_l_super_numeric, or tril(A) for cholmod_l_factorize (simplicial,
 // where it makes the one permuted copy that its kernel needs).
 SparseHandle SparseCholesky::Impl::lower(const std::vector<Term>& terms) {
-  SparseHandle S(permuted_lower(terms, n, L->is_super ? inverse_permutation() : std::vector<Long>{}, true, common),
+  SparseHandle S(permuted_lower(terms, n, L->is_super ? inverse_permutation() : std::vector<Long>{},
+                                true, common),
                  SparseDeleter{&common});
   if (!S) throw std::runtime_error(cholmod_status_text(common.status));
   return S;
@@ -354,7 +347,8 @@ double SparseCholesky::Impl::factor_bytes() const {
     return static_cast<double>(L->xsize) * sizeof(double) + static_cast<double>(L->ssize) * word +
            3.0 * static_cast<double>(L->nsuper + 1) * word;
   }
-  return static_cast<double>(L->nzmax) * (sizeof(double) + word) + 4.0 * static_cast<double>(L->n) * word;
+  return static_cast<double>(L->nzmax) * (sizeof(double) + word) +
+         4.0 * static_cast<double>(L->n) * word;
 }
 
 FactorStatus SparseCholesky::Impl::factorize(const std::vector<Term>& terms) {
@@ -469,7 +463,8 @@ void SparseCholesky::solve_in_place(Eigen::Ref<Eigen::MatrixXd> B) {
       for (Eigen::Index k = 0; k < d.n; ++k) column[k] = B(perm[k], c);
       B.col(c) = column;
     }
-    if (!cholmod_l_super_lsolve(d.L, &block, d.E, &d.common) || !cholmod_l_super_ltsolve(d.L, &block, d.E, &d.common)) {
+    if (!cholmod_l_super_lsolve(d.L, &block, d.E, &d.common) ||
+        !cholmod_l_super_ltsolve(d.L, &block, d.E, &d.common)) {
       throw std::runtime_error("SparseCholesky::solve: " + cholmod_status_text(d.common.status));
     }
     for (Eigen::Index c = 0; c < B.cols(); ++c) {
@@ -489,12 +484,16 @@ void SparseCholesky::solve_in_place(Eigen::Ref<Eigen::MatrixXd> B) {
   d.stats.solve_seconds += seconds_since(start);
 }
 
-Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) { return solve(Eigen::MatrixXd(b)).col(0); }
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) {
+  return solve(Eigen::MatrixXd(b)).col(0);
+}
 
 bool SparseCholesky::analyzed() const { return impl_ && impl_->L != nullptr; }
 bool SparseCholesky::factorized() const { return impl_ && impl_->factorized; }
 Eigen::Index SparseCholesky::rows() const { return impl_ ? impl_->n : 0; }
-std::optional<double> SparseCholesky::shift() const { return impl_ ? impl_->shift : std::nullopt; }
+std::optional<double> SparseCholesky::shift() const {
+  return impl_ ? impl_->shift : std::nullopt;
+}
 const FactorStatistics& SparseCholesky::statistics() const {
   static const FactorStatistics empty{};
   return impl_ ? impl_->stats : empty;

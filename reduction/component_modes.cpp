@@ -80,8 +80,8 @@ void validate_boundary(const linalg::SpMat& K, const linalg::SpMat& M, const std
 }
 
 // Lowest fixed-interface modes on the factorization of K_ii (shift 0).
-linalg::EigenResult fixed_interface_modes(const linalg::SpMat& Kii, const linalg::SpMat& Mii,
-                                          linalg::SparseCholesky& factor, const ComponentModeOptions& o) {
+linalg::EigenResult fixed_interface_modes(const linalg::SpMat& Kii, const linalg::SpMat& Mii, linalg::SparseCholesky& factor,
+                                  const ComponentModeOptions& o) {
   linalg::EigenOptions eo;
   eo.shift = 0.0;
   eo.tolerance = o.tolerance;
@@ -218,8 +218,8 @@ void ComponentModeOptions::validate(Eigen::Index interior_dofs) const {
   if (!(tolerance > 0 && tolerance < 1)) throw std::invalid_argument("tolerance: must lie in (0, 1)");
 }
 
-ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
-                                 const std::vector<Eigen::Index>& boundary, const ComponentModeOptions& options) {
+ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M, const std::vector<Eigen::Index>& boundary,
+                                 const ComponentModeOptions& options) {
   validate_boundary(K, M, boundary);
   const Eigen::Index n = K.rows();
   const auto nb = static_cast<Eigen::Index>(boundary.size());
@@ -241,12 +241,9 @@ ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
   stats.factor_seconds = seconds_since(t0);
   stats.factor_bytes = factor.statistics().factor_bytes;
   if (!status.ok || status.min_relative_pivot < kSingularPivot) {
-    for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii))
-      out.mechanism_dofs.push_back(dofs.interior[static_cast<size_t>(d)]);
-    out.message =
-        "the interior stiffness K_ii is singular with the interface DOFs held: the interface does not "
-        "hold the frame statically (" +
-        std::to_string(out.mechanism_dofs.size()) + " DOFs move freely)";
+    for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(dofs.interior[static_cast<size_t>(d)]);
+    out.message = "the interior stiffness K_ii is singular with the interface DOFs held: the interface does not "
+                  "hold the frame statically (" + std::to_string(out.mechanism_dofs.size()) + " DOFs move freely)";
     return out;
   }
 

@@ -28,9 +28,9 @@ EffectKind load_cell_gain();
 
 // The scales diagnose's probes and plausible ranges are stated in.
 struct FitScales {
-  int n = 0;                          // rods
-  double W = 0, L = 0, M = 0, w = 0;  // weight per rod, rod length, suspended mass, swing rate
-  double rho = 0;                     // lever of the joints about their centroid, at least L / 10
+  int n = 0;                                  // rods
+  double W = 0, L = 0, M = 0, w = 0;          // weight per rod, rod length, suspended mass, swing rate
+  double rho = 0;                             // lever of the joints about their centroid, at least L / 10
   // Compliances: probe 0.5 mm under a rod's static load; plausible up to
   // 50 mm under it (vertical), or 1 m under it (frames sideways: they carry
   // only the swing's horizontal loads, a few % of it).

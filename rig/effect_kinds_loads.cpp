@@ -18,8 +18,7 @@ std::shared_ptr<const Effect> parse_joint_friction(const ParameterValue& e, cons
   p.coulomb = R::number_or(e, "coulomb", 0.0);
   p.regularization = R::number_or(e, "regularization", p.regularization);
   const std::string joints = R::text_or(e, "joints", "both");
-  if (joints != "both" && joints != "upper" && joints != "lower")
-    R::fail(e["joints"], "joints", "must be both, upper or lower");
+  if (joints != "both" && joints != "upper" && joints != "lower") R::fail(e["joints"], "joints", "must be both, upper or lower");
   p.upper = joints != "lower";
   p.lower = joints != "upper";
   return std::make_shared<JointFriction>(p);
@@ -29,8 +28,7 @@ std::shared_ptr<const Effect> parse_air_drag(const ParameterValue& e, const Effe
   expect_parameters(e, x, "air_drag");
   AirDragParameters p;
   p.density = R::number_or(e, "density", p.density);
-  if (!e["cd_area"].defined() && !e["rotational"].defined())
-    R::fail(e, x.key, "needs 'cd_area' (m^2) and/or 'rotational'");
+  if (!e["cd_area"].defined() && !e["rotational"].defined()) R::fail(e, x.key, "needs 'cd_area' (m^2) and/or 'rotational'");
   p.cd_area = R::number_or(e, "cd_area", 0.0);
   p.rotational = R::number_or(e, "rotational", 0.0);
   if (e["centre"].defined()) p.centre = R::vec3(e, "centre");
@@ -60,9 +58,8 @@ EffectFitting fit_joint_friction(const FitContext& x) {
         .set("coulomb", ParameterValue::of(positive(p(1))));
   };
   f.advice = "add joint friction (effects.joint_friction), or service the Hooke's joints' bearings";
-  f.evidence =
-      "records at two swing amplitudes: Coulomb friction takes the same amplitude per cycle, viscous "
-      "friction the same share, air drag a share that grows with the amplitude";
+  f.evidence = "records at two swing amplitudes: Coulomb friction takes the same amplitude per cycle, viscous "
+               "friction the same share, air drag a share that grows with the amplitude";
   return f;
 }
 
@@ -89,9 +86,8 @@ EffectFitting fit_air_drag(const FitContext& x) {
         .set("rotational", ParameterValue::of(positive(p(1))));
   };
   f.advice = "add air drag (effects.air_drag: the body's drag area), or shield the body from drafts";
-  f.evidence =
-      "records at two swing amplitudes (drag takes a share per cycle that grows with the amplitude, "
-      "joint friction does not), or one with the body shielded from the air";
+  f.evidence = "records at two swing amplitudes (drag takes a share per cycle that grows with the amplitude, "
+               "joint friction does not), or one with the body shielded from the air";
   return f;
 }
 
@@ -101,9 +97,8 @@ EffectKind joint_friction() {
   EffectKind k;
   k.name = "joint_friction";
   k.hook = EffectHook::add_loads;
-  k.equations =
-      "torque -(c w + mu w / sqrt(w.w + eps^2)) in each Hooke's joint against the rod's relative swing "
-      "rate w, balanced by transverse end forces on the rod";
+  k.equations = "torque -(c w + mu w / sqrt(w.w + eps^2)) in each Hooke's joint against the rod's relative swing "
+                "rate w, balanced by transverse end forces on the rod";
   k.signature = "Coulomb: amplitude decays linearly; viscous: exponentially";
   k.parameters = {
       {"viscous", ParameterShape::number, "N m s/rad", 0, inf, false, "0", "c (`viscous` and/or `coulomb`)"},
@@ -126,8 +121,7 @@ EffectKind air_drag() {
   k.signature = "large swings decay faster";
   k.parameters = {
       {"density", ParameterShape::number, "kg/m^3", 0, inf, true, "1.2", "air density"},
-      {"cd_area", ParameterShape::number, "m^2", 0, inf, false, "0",
-       "drag coefficient x frontal area (`cd_area` and/or `rotational`)"},
+      {"cd_area", ParameterShape::number, "m^2", 0, inf, false, "0", "drag coefficient x frontal area (`cd_area` and/or `rotational`)"},
       {"rotational", ParameterShape::number, "N m s^2/rad^2", 0, inf, false, "0", "rotational drag"},
       {"centre", ParameterShape::vec3, "m", -inf, inf, false, "the CoG", "drag centre in frame c"},
   };

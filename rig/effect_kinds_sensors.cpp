@@ -12,9 +12,8 @@ std::shared_ptr<const Effect> parse_load_cell_gain(const ParameterValue& e, cons
   expect_parameters(e, x, "load_cell_gain");
   if (!e["gain"].defined() && !e["offset"].defined()) R::fail(e, x.key, "needs 'gain' and/or 'offset' (N)");
   const auto n = static_cast<size_t>(x.rods);
-  return std::make_shared<LoadCellGain>(
-      e["gain"].defined() ? R::per_rod(e, "gain", x.rods) : std::vector<double>(n, 1.0),
-      e["offset"].defined() ? R::per_rod(e, "offset", x.rods) : std::vector<double>(n, 0.0));
+  return std::make_shared<LoadCellGain>(e["gain"].defined() ? R::per_rod(e, "gain", x.rods) : std::vector<double>(n, 1.0),
+                                        e["offset"].defined() ? R::per_rod(e, "offset", x.rods) : std::vector<double>(n, 0.0));
 }
 
 // Every encoder's offset.
@@ -32,9 +31,8 @@ EffectFitting fit_encoder_offset(const FitContext& x) {
         .set("alpha", ParameterValue::of(segment(p, 0, n)))
         .set("beta", ParameterValue::of(segment(p, n, n)));
   };
-  f.advice =
-      "calibrate the encoders' zero with the rods hanging at rest and give the offsets "
-      "(effects.encoder_offset)";
+  f.advice = "calibrate the encoders' zero with the rods hanging at rest and give the offsets "
+             "(effects.encoder_offset)";
   f.evidence = "a record at rest with the rods hanging still: an offset reads as a constant non-zero angle";
   return f;
 }
@@ -55,9 +53,7 @@ EffectFitting fit_load_cell_gain(const FitContext& x) {
   f.write = [n](const Eigen::VectorXd& p) {
     std::vector<double> gain = segment(p, 0, n);
     for (double& g : gain) g = 1.0 + g;
-    return ParameterValue::map()
-        .set("gain", ParameterValue::of(gain))
-        .set("offset", ParameterValue::of(segment(p, n, n)));
+    return ParameterValue::map().set("gain", ParameterValue::of(gain)).set("offset", ParameterValue::of(segment(p, n, n)));
   };
   f.advice = "calibrate the load cells against known weights and give gain and offset (effects.load_cell_gain)";
   f.evidence = "a record with a known weight added: a gain error scales the load cells' change, an offset does not";

@@ -52,9 +52,8 @@ EffectFitting fit_rod_compliance(const FitContext& x) {
     return ParameterValue::map().set("stiffness", same ? ParameterValue::of(k.front()) : ParameterValue::of(k));
   };
   f.advice = "give the rods' axial stiffness (effects.rod_compliance: youngs_modulus and area, or stiffness)";
-  f.evidence =
-      "a strain gauge on a rod, or records with a second, heavier body: the rods stretch in proportion "
-      "to their static load, the frames mostly sideways";
+  f.evidence = "a strain gauge on a rod, or records with a second, heavier body: the rods stretch in proportion "
+               "to their static load, the frames mostly sideways";
   return f;
 }
 
@@ -66,9 +65,7 @@ EffectFitting fit_rod_mass(const FitContext& x) {
   f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
     return std::make_shared<RodMass>(std::vector<double>(n, positive(p(0))));
   };
-  f.write = [](const Eigen::VectorXd& p) {
-    return ParameterValue::map().set("mass", ParameterValue::of(positive(p(0))));
-  };
+  f.write = [](const Eigen::VectorXd& p) { return ParameterValue::map().set("mass", ParameterValue::of(positive(p(0)))); };
   f.advice = "weigh a rod and give its mass (effects.rod_mass.mass)";
   f.evidence = "weighing a rod";
   return f;
@@ -82,9 +79,7 @@ EffectFitting fit_rod_length_error(const FitContext& x) {
   f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
     return std::make_shared<RodLengthError>(segment(p, 0, n));
   };
-  f.write = [n](const Eigen::VectorXd& p) {
-    return ParameterValue::map().set("delta", ParameterValue::of(segment(p, 0, n)));
-  };
+  f.write = [n](const Eigen::VectorXd& p) { return ParameterValue::map().set("delta", ParameterValue::of(segment(p, 0, n))); };
   f.advice = "measure the rods' joint-to-joint lengths and correct geometry.rods[*].length";
   f.evidence = "the rods' joint-to-joint lengths measured";
   return f;
@@ -120,12 +115,10 @@ EffectKind rod_compliance() {
   EffectKind k;
   k.name = "rod_compliance";
   k.hook = EffectHook::build;
-  k.equations =
-      "each rod an axial spring between its joints, replacing `rods.stiffness` (without either the rods are rigid)";
+  k.equations = "each rod an axial spring between its joints, replacing `rods.stiffness` (without either the rods are rigid)";
   k.signature = "bounce mode at sqrt(sum k / m) / 2 pi (vertical rods)";
   k.parameters = {
-      {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "",
-       "axial stiffness (or `youngs_modulus` and `area`)"},
+      {"stiffness", ParameterShape::per_rod, "N/m", 0, inf, true, "", "axial stiffness (or `youngs_modulus` and `area`)"},
       {"youngs_modulus", ParameterShape::number, "Pa", 0, inf, true, "", "E of EA/L"},
       {"area", ParameterShape::per_rod, "m^2", 0, inf, true, "", "the rods' cross-section"},
   };

@@ -6,8 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 namespace rigflex::test {
 
@@ -40,9 +41,7 @@ inline fs::path fresh_dir(const std::string& name) {
   return d;
 }
 
-inline std::string example(const std::string& name) {
-  return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml";
-}
+inline std::string example(const std::string& name) { return std::string(RIGFLEX_SOURCE_DIR) + "/examples/" + name + "/model.yaml"; }
 
 inline fs::path write_model(const std::string& name, const std::string& text) {
   const fs::path p = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()) + ".yaml");

@@ -53,13 +53,10 @@ TEST_F(CliCompare, WritesTheComparisonTheReportAndTheStudy) {
   EXPECT_NE(r.out.find("<- this run"), std::string::npos);
   // The same version again updates its entry; the effect added is a new version.
   ASSERT_EQ(run("compare " + rig().string() + " " + data() + " --study " + (*dir_ / "study").string() + " --out " +
-                out.string() + " --quiet")
-                .code,
-            0);
+                out.string() + " --quiet").code, 0);
   std::ofstream(*dir_ / "fix.yaml") << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
-  const CliRun fixed =
-      run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "fix.yaml").string() + " --study " +
-          (*dir_ / "study").string() + " --out " + (*dir_ / "cmp2").string() + " --quiet");
+  const CliRun fixed = run("compare " + rig().string() + " " + data() + " --effects " + (*dir_ / "fix.yaml").string() +
+                           " --study " + (*dir_ / "study").string() + " --out " + (*dir_ / "cmp2").string() + " --quiet");
   ASSERT_EQ(fixed.code, 0) << fixed.out;
   const auto study = read_json(*dir_ / "study" / "study.json");
   ASSERT_EQ(study["versions"].size(), 2u);
@@ -86,11 +83,8 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
   EXPECT_TRUE(j["tested_after_chain"].empty());
   EXPECT_TRUE(fs::exists(out / "effects" / "found.yaml"));
   // The written effect file is a valid --effects file.
-  EXPECT_EQ(
-      run("compare " + rig().string() + " " + data() + " --effects " +
-          (out / "effects" / "rod_length_error.yaml").string() + " --out " + (*dir_ / "cmp3").string() + " --quiet")
-          .code,
-      0);
+  EXPECT_EQ(run("compare " + rig().string() + " " + data() + " --effects " + (out / "effects" / "rod_length_error.yaml").string() +
+                " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
 }
 
 // The rig file states the rods' stiffness and how well it is known; the
@@ -103,9 +97,7 @@ TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   std::ofstream(dir / "truth.yaml") << kCompareRig << "rods: {stiffness: 2.5e5}\n";
   std::ofstream(dir / "rig.yaml") << kCompareRig << "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n";
   ASSERT_EQ(run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
-                (dir / "data").string() + " --quiet")
-                .code,
-            0);
+                (dir / "data").string() + " --quiet").code, 0);
   const CliRun r = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
                        " --only rod_compliance --out " + (dir / "diag").string() + " --quiet");
   ASSERT_EQ(r.code, 0) << r.out;

@@ -14,8 +14,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <ostream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "apps/cli_support.hpp"
@@ -40,11 +40,11 @@ class CliEffectFiles : public ::testing::TestWithParam<Variant> {
     dir_ = new fs::path(fresh_dir("effect_files"));
     fs::create_directories(*dir_);
     std::ofstream(*dir_ / "truth.yaml") << kLoopRig << "effects:\n  rod_length_error: {delta: [0.003, 0.0, 0.0]}\n";
-    const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() +
-                         " --histories 3 --duration 8 --seed 11 --out " + (*dir_ / "data").string() + " --quiet");
+    const CliRun r = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 3 --duration 8 --seed 11 --out " +
+                         (*dir_ / "data").string() + " --quiet");
     ASSERT_EQ(r.code, 0) << r.out;
-    const CliRun s = run("simulate " + (*dir_ / "truth.yaml").string() +
-                         " --histories 1 --duration 6 --seed 12 --out " + (*dir_ / "short").string() + " --quiet");
+    const CliRun s = run("simulate " + (*dir_ / "truth.yaml").string() + " --histories 1 --duration 6 --seed 12 --out " +
+                         (*dir_ / "short").string() + " --quiet");
     ASSERT_EQ(s.code, 0) << s.out;
   }
   static void TearDownTestSuite() {

@@ -36,13 +36,10 @@ class CliIdentify : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = fs::temp_directory_path() / ("rigflex-cli-identify-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
-    const CliRun sim =
-        run("simulate " + kLargeRig + "/rig.yaml --sets 1 --seed 5 --quiet --out " + (dir_ / "meas").string());
+    const CliRun sim = run("simulate " + kLargeRig + "/rig.yaml --sets 1 --seed 5 --quiet --out " + (dir_ / "meas").string());
     ASSERT_EQ(sim.code, 0) << sim.out;
-    const CliRun red = run("reduce " + kLargeRig +
-                           "/fixed-frame.yaml --interface upper_joints --method craig-bampton "
-                           "--modes 6 --zeta 0.02 --quiet --out " +
-                           (dir_ / "reduced").string());
+    const CliRun red = run("reduce " + kLargeRig + "/fixed-frame.yaml --interface upper_joints --method craig-bampton "
+                           "--modes 6 --zeta 0.02 --quiet --out " + (dir_ / "reduced").string());
     ASSERT_EQ(red.code, 0) << red.out;
     write_text(dir_ / "rig.yaml", rig_without_fixed_frame());
   }
@@ -85,24 +82,23 @@ TEST_F(CliIdentify, FlexibleAlgorithmConsumesTheReducedFilesAndFindsTheCogHeight
 // its line and key, and nothing is written.
 TEST_F(CliIdentify, EffectsFilesExtendTheModelTheIdentificationInverts) {
   const TempDir out("rigflex-identify");
-  write_text(out.path() / "frame.yaml",
-             "effects:\n  fixed_frame_flexibility:\n    reduced: " + (dir_ / "reduced").string() + "\n");
-  const std::string base =
-      "identify " + (dir_ / "rig.yaml").string() + " " + (dir_ / "meas").string() + " --quiet --algorithm flexible";
-  const CliRun r =
-      run(base + " --effects " + (out.path() / "frame.yaml").string() + " --out " + (out.path() / "flex").string());
+  write_text(out.path() / "frame.yaml", "effects:\n  fixed_frame_flexibility:\n    reduced: " +
+                                            (dir_ / "reduced").string() + "\n");
+  const std::string base = "identify " + (dir_ / "rig.yaml").string() + " " + (dir_ / "meas").string() +
+                           " --quiet --algorithm flexible";
+  const CliRun r = run(base + " --effects " + (out.path() / "frame.yaml").string() + " --out " +
+                       (out.path() / "flex").string());
   ASSERT_EQ(r.code, 0) << r.out;
   const double z = read_json(out.path() / "flex" / "identification.json")["mean"]["cog"][2].get<double>();
   EXPECT_NEAR(z, kTrueZg, 0.002) << r.out;
   // The same frame through --reduced gives the same model, so the same answer to round-off.
-  const CliRun same =
-      run(base + " --reduced " + (dir_ / "reduced").string() + " --out " + (out.path() / "red").string());
+  const CliRun same = run(base + " --reduced " + (dir_ / "reduced").string() + " --out " + (out.path() / "red").string());
   ASSERT_EQ(same.code, 0) << same.out;
   EXPECT_NEAR(read_json(out.path() / "red" / "identification.json")["mean"]["cog"][2].get<double>(), z, 1e-9);
 
   write_text(out.path() / "bad.yaml", "effects:\n  rod_length_error: {delta: [0.001, 0, 0], colour: red}\n");
-  const CliRun bad =
-      run(base + " --effects " + (out.path() / "bad.yaml").string() + " --out " + (out.path() / "bad").string());
+  const CliRun bad = run(base + " --effects " + (out.path() / "bad.yaml").string() + " --out " +
+                         (out.path() / "bad").string());
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find((out.path() / "bad.yaml").string() + ":2: key 'effects.rod_length_error.colour'"),
             std::string::npos)
@@ -112,8 +108,7 @@ TEST_F(CliIdentify, EffectsFilesExtendTheModelTheIdentificationInverts) {
 
 TEST_F(CliIdentify, ReferenceAndTareGiveErrorsSharesAndTheBody) {
   const TempDir out("rigflex-identify");
-  write_text(out.path() / "ref.yaml",
-             "mass: 2914.0\ncog: [0.511, -0.008, -0.598]\ninertia: [1632, 5729, 5510, 44, -483, 4]\n");
+  write_text(out.path() / "ref.yaml", "mass: 2914.0\ncog: [0.511, -0.008, -0.598]\ninertia: [1632, 5729, 5510, 44, -483, 4]\n");
   write_text(out.path() / "tare.yaml", "mass: 400.0\ncog: [0.0, 0.0, -0.1]\ninertia: [300, 420, 650, 0, 0, 0]\n");
   const std::string args = "identify " + kLargeRig + "/rig.yaml " + (dir_ / "meas").string() +
                            " --algorithm flexible --quiet --reference " + (out.path() / "ref.yaml").string();
@@ -124,8 +119,7 @@ TEST_F(CliIdentify, ReferenceAndTareGiveErrorsSharesAndTheBody) {
   EXPECT_EQ(j["accuracy_share"]["all"].get<double>(), 1.0);
   ASSERT_EQ(j["normal_probability"]["points"].size(), 1u);
   // Tare: the body is the system minus 400 kg at z = -0.1: its CoG moves to (m z - 400 (-0.1)) / (m - 400).
-  const CliRun t =
-      run(args + " --tare " + (out.path() / "tare.yaml").string() + " --out " + (out.path() / "b").string());
+  const CliRun t = run(args + " --tare " + (out.path() / "tare.yaml").string() + " --out " + (out.path() / "b").string());
   ASSERT_EQ(t.code, 0) << t.out;
   const nlohmann::json b = read_json(out.path() / "b" / "identification.json");
   const double zs = j["mean"]["cog"][2].get<double>();
@@ -193,8 +187,8 @@ TEST_F(CliIdentify, CompressedRecordsIdentifyAsTheirCsvAndABadOneIsNamed) {
   for (const auto& e : fs::directory_iterator(dir_ / "meas" / "set1"))
     write_gzip(out.path() / "packed" / (e.path().filename().string() + ".gz"), read_text(e.path()));
   const std::string rig = " " + (dir_ / "rig.yaml").string() + " ";
-  const CliRun plain =
-      run("identify" + rig + (dir_ / "meas" / "set1").string() + " --quiet --out " + (out.path() / "plain").string());
+  const CliRun plain = run("identify" + rig + (dir_ / "meas" / "set1").string() + " --quiet --out " +
+                           (out.path() / "plain").string());
   ASSERT_EQ(plain.code, 0) << plain.out;
   const CliRun packed = run("identify" + rig + (out.path() / "packed").string() + " --quiet --out " +
                             (out.path() / "packed-result").string());
@@ -205,8 +199,8 @@ TEST_F(CliIdentify, CompressedRecordsIdentifyAsTheirCsvAndABadOneIsNamed) {
   fs::create_directories(out.path() / "bad");
   const fs::path not_gzip = out.path() / "bad" / "h1.csv.gz";
   write_text(not_gzip, read_text(dir_ / "meas" / "set1" / "h1.csv"));
-  const CliRun bad =
-      run("identify" + rig + (out.path() / "bad").string() + " --quiet --out " + (out.path() / "res").string());
+  const CliRun bad = run("identify" + rig + (out.path() / "bad").string() + " --quiet --out " +
+                         (out.path() / "res").string());
   EXPECT_EQ(bad.code, 2) << bad.out;
   EXPECT_NE(bad.out.find(not_gzip.string()), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("not a gzip file"), std::string::npos) << bad.out;
@@ -217,10 +211,9 @@ TEST_F(CliIdentify, RodCountMismatchAndForeignReducedFrameAreRefused) {
   const TempDir out("rigflex-identify");
   // A 4-rod rig file against 3-rod data.
   std::string four = read_text(kLargeRig + "/rig.yaml");
-  four = replace_first(
-      four, "    - {upper: [0.0, 1.4, 3.15]",
-      "    - {upper: [0.5, 1.4, 3.15], lower: [0.5, 1.4, 0.0], length: 0.6, encoder_axis: [1.0, 0.0, 0.0]}\n"
-      "    - {upper: [0.0, 1.4, 3.15]");
+  four = replace_first(four, "    - {upper: [0.0, 1.4, 3.15]",
+                       "    - {upper: [0.5, 1.4, 3.15], lower: [0.5, 1.4, 0.0], length: 0.6, encoder_axis: [1.0, 0.0, 0.0]}\n"
+                       "    - {upper: [0.0, 1.4, 3.15]");
   four = four.substr(0, four.find("effects:"));
   write_text(out.path() / "four.yaml", four);
   const CliRun r4 = run("identify " + (out.path() / "four.yaml").string() + " " + (dir_ / "meas").string() +
@@ -258,10 +251,8 @@ TEST(CliCheckPrediction, LargeRigPassesTheRatioButNotThePredictedError) {
 
 TEST(CliSweep, RigidErrorGrowsAsTheRigSoftensAndFlexibleStaysSmall) {
   const TempDir out("rigflex-sweep");
-  const CliRun r = run("sweep " + kLargeRig +
-                       "/rig.yaml --mass-scale 1:1:1 --stiffness-scale 0.5:1:2 --sets 2 "
-                       "--histories 3 --duration 10 --quiet --out " +
-                       out.path().string());
+  const CliRun r = run("sweep " + kLargeRig + "/rig.yaml --mass-scale 1:1:1 --stiffness-scale 0.5:1:2 --sets 2 "
+                       "--histories 3 --duration 10 --quiet --out " + out.path().string());
   ASSERT_EQ(r.code, 0) << r.out;
   const nlohmann::json j = read_json(out.path() / "sweep.json");
   ASSERT_EQ(j["points"].size(), 3u);

@@ -135,8 +135,7 @@ TEST(CliRig, CheckOfABadRigNamesFileLineAndKeyAndWritesNothing) {
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
   EXPECT_EQ(r.code, 2) << r.out;
-  const std::string where =
-      rig.file.string() + ":" + std::to_string(line_of(text, "mass: -100.0")) + ": key 'body.mass'";
+  const std::string where = rig.file.string() + ":" + std::to_string(line_of(text, "mass: -100.0")) + ": key 'body.mass'";
   EXPECT_NE(r.out.find(where), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
 }

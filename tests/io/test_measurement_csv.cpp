@@ -17,11 +17,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "io/input_error.hpp"
-#include "io/measurement_csv.hpp"
 #include "support/awkward_doubles.hpp"
 #include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
+#include "io/input_error.hpp"
+#include "io/measurement_csv.hpp"
 
 namespace rigflex {
 namespace {
@@ -238,9 +238,12 @@ TEST(TimeHistoryCsv, CommentsParsed) {
                     "# sample_rate_hz: 1000",
                     "# Größe: ü"};
   const Record h = parse(table.text());
-  const std::vector<std::pair<std::string, std::string>> expected = {
-      {"sample_rate_hz", "500"},      {"body", "light-truck"},    {"operator", "J. Doe"},
-      {"url", "http://rig:8080/log"}, {"sample_rate_hz", "1000"}, {"Größe", "ü"}};
+  const std::vector<std::pair<std::string, std::string>> expected = {{"sample_rate_hz", "500"},
+                                                                     {"body", "light-truck"},
+                                                                     {"operator", "J. Doe"},
+                                                                     {"url", "http://rig:8080/log"},
+                                                                     {"sample_rate_hz", "1000"},
+                                                                     {"Größe", "ü"}};
   EXPECT_EQ(h.provenance.comments, expected);
   EXPECT_EQ(h.comment("sample_rate_hz"), "500");  // the first of repeated keys
   EXPECT_EQ(h.comment("body"), "light-truck");
@@ -404,25 +407,11 @@ TEST(TimeHistoryCsvWrite, InvalidHistoryCreatesNoFile) {
       {"beta4 of sample 1 is -inf", [](Record& h) { h.beta(0, 3) = -std::numeric_limits<double>::infinity(); }},
       {"t of sample 3 is nan", [](Record& h) { h.t(2) = std::nan(""); }},
       {"t of sample 4", [](Record& h) { h.t(3) = h.t(2); }},
-      {"empty key",
-       [](Record& h) {
-         h.provenance.comments.push_back({"", "x"});
-       }},
-      {"contains ':'",
-       [](Record& h) {
-         h.provenance.comments.push_back({"a:b", "x"});
-       }},
-      {"line break",
-       [](Record& h) {
-         h.provenance.comments.push_back({"a", "x\ny"});
-       }},
-      {"blanks",
-       [](Record& h) {
-         h.provenance.comments.push_back({"a", " x"});
-       }},
-      {"UTF-8", [](Record& h) {
-         h.provenance.comments.push_back({"a", "M\xFCller"});
-       }}};
+      {"empty key", [](Record& h) { h.provenance.comments.push_back({"", "x"}); }},
+      {"contains ':'", [](Record& h) { h.provenance.comments.push_back({"a:b", "x"}); }},
+      {"line break", [](Record& h) { h.provenance.comments.push_back({"a", "x\ny"}); }},
+      {"blanks", [](Record& h) { h.provenance.comments.push_back({"a", " x"}); }},
+      {"UTF-8", [](Record& h) { h.provenance.comments.push_back({"a", "M\xFCller"}); }}};
   for (const auto& [words, breakage] : breakages) {
     Record h = good;
     breakage(h);
@@ -456,7 +445,7 @@ TEST(MeasurementSet, NaturalOrderAndOnlyCsvFiles) {
   }
   write_text(dir.path() / "notes.txt", "not a time history");
   write_text(dir.path() / "._h1.csv", "\x05\x16\x07 not a time history");  // macOS metadata beside h1.csv
-  fs::create_directories(dir.path() / "old.csv");                          // a folder, not a file
+  fs::create_directories(dir.path() / "old.csv");           // a folder, not a file
   const io::MeasurementSet set = io::read_measurement_set(dir.path());
   std::vector<std::string> order;
   for (const auto& f : set.files) order.push_back(f.filename().string());

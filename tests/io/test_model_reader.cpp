@@ -82,8 +82,7 @@ TEST(ModelReader, UnknownKeyNamesLineAndKey) {
 }
 
 TEST(ModelReader, MissingKeyNamesLineAndKey) {
-  const auto e = model_error_of(
-      replace_first(kValidModel, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
+  const auto e = model_error_of(replace_first(kValidModel, "  steel: {E: 2.1e11, nu: 0.3, rho: 7850}", "  steel: {E: 2.1e11, nu: 0.3}"));
   EXPECT_EQ(e.line(), 3);
   EXPECT_EQ(e.key(), "rho");
 }
@@ -118,22 +117,19 @@ TEST(ModelReader, DuplicateNodeId) {
 }
 
 TEST(ModelReader, ElementNamingAMissingNode) {
-  const auto e =
-      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
+  const auto e = model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 9], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("node 9"), std::string::npos);
 }
 
 TEST(ModelReader, ZeroLengthElement) {
-  const auto e =
-      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
+  const auto e = model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 1], section: col"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_NE(std::string(e.what()).find("zero length"), std::string::npos);
 }
 
 TEST(ModelReader, UnknownSection) {
-  const auto e =
-      model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
+  const auto e = model_error_of(replace_first(kValidModel, "nodes: [1, 2], section: col", "nodes: [1, 2], section: pipe"));
   EXPECT_EQ(e.line(), 17);
   EXPECT_EQ(e.key(), "section");
 }
@@ -171,14 +167,14 @@ shells:
 }
 
 TEST(ModelReader, NonPositiveThickness) {
-  const auto e = model_error_of(
-      "materials:\n  s: {E: 1e9, nu: 0.3, rho: 1000}\nshell_sections:\n  p: {material: s, thickness: -1}\nnodes:\n  - "
-      "[1, 0, 0, 0]\n");
+  const auto e = model_error_of("materials:\n  s: {E: 1e9, nu: 0.3, rho: 1000}\nshell_sections:\n  p: {material: s, thickness: -1}\nnodes:\n  - [1, 0, 0, 0]\n");
   EXPECT_EQ(e.line(), 4);
   EXPECT_EQ(e.key(), "thickness");
 }
 
-TEST(ModelReader, MissingFile) { EXPECT_THROW(io::read_model("/nonexistent/model.yaml"), io::InputError); }
+TEST(ModelReader, MissingFile) {
+  EXPECT_THROW(io::read_model("/nonexistent/model.yaml"), io::InputError);
+}
 
 }  // namespace
 }  // namespace rigflex

@@ -17,21 +17,21 @@
 #include <random>
 #include <set>
 
+#include "support/awkward_doubles.hpp"
+#include "support/input_errors.hpp"
+#include "support/temp_files.hpp"
+#include "support/text_edits.hpp"
 #include "io/input_error.hpp"
 #include "io/json_fields.hpp"
 #include "io/matrix_market.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_mat.hpp"
-#include "support/awkward_doubles.hpp"
-#include "support/input_errors.hpp"
-#include "support/temp_files.hpp"
-#include "support/text_edits.hpp"
 
 namespace rigflex {
 namespace {
 
-using test::line_of;
 using test::replace_first;
+using test::line_of;
 
 namespace fs = std::filesystem;
 using reduction::ReducedFrame;
@@ -255,27 +255,26 @@ TEST(MatrixMarket, ReadsCoordinateSymmetricAndIntegerFiles) {
   Eigen::MatrixXd expected(3, 2);
   expected << 1.5, 0, 0, 0, 0, -2e-3;
   expect_same(expected,
-              io::parse_matrix_market(
-                  "%%MatrixMarket matrix coordinate real general\n% c\n\n3 2 2\n1 1 1.5\n3 2 -2e-3\n", "c.mtx"),
+              io::parse_matrix_market("%%MatrixMarket matrix coordinate real general\n% c\n\n3 2 2\n1 1 1.5\n3 2 -2e-3\n",
+                                      "c.mtx"),
               "coordinate general");
 
   Eigen::MatrixXd sym(3, 3);
   sym << 1, 2, 0, 2, 0, 3, 0, 3, 4;
   expect_same(sym,
-              io::parse_matrix_market(
-                  "%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 1\n2 1 2\n3 2 3\n3 3 4\n", "s.mtx"),
+              io::parse_matrix_market("%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 1\n2 1 2\n3 2 3\n3 3 4\n",
+                                      "s.mtx"),
               "coordinate symmetric");
-  expect_same(
-      sym, io::parse_matrix_market("%%MATRIXMARKET Matrix Array Integer Symmetric\n3 3\n1\n2\n0\n0\n+3\n4\n", "i.mtx"),
-      "array integer symmetric");
+  expect_same(sym, io::parse_matrix_market("%%MATRIXMARKET Matrix Array Integer Symmetric\n3 3\n1\n2\n0\n0\n+3\n4\n", "i.mtx"),
+              "array integer symmetric");
 
   Eigen::MatrixXd skew(3, 3);
   skew << 0, -5, -6, 5, 0, -7, 6, 7, 0;
   expect_same(skew, io::parse_matrix_market("%%MatrixMarket matrix array real skew-symmetric\n3 3\n5\n6 7\n", "k.mtx"),
               "array skew-symmetric");
   expect_same(skew,
-              io::parse_matrix_market(
-                  "%%MatrixMarket matrix coordinate integer skew-symmetric\n3 3 3\n2 1 5\n3 1 6\n3 2 7\n", "k.mtx"),
+              io::parse_matrix_market("%%MatrixMarket matrix coordinate integer skew-symmetric\n3 3 3\n2 1 5\n3 1 6\n3 2 7\n",
+                                      "k.mtx"),
               "coordinate skew-symmetric");
 }
 
@@ -441,9 +440,8 @@ io::InputError mat_error(const fs::path& file) {
 TEST(ReducedExport, MatReaderRefusesWhatIsNotAReducedFrame) {
   test::TempDir dir("rigflex-export");
   const fs::path file = dir.path() / "x.mat";
-  write_text(file,
-             "not a MAT file at all, but long enough to have a header of 128 bytes........................"
-             ".......................................................................................");
+  write_text(file, "not a MAT file at all, but long enough to have a header of 128 bytes........................"
+                   ".......................................................................................");
   EXPECT_EQ(mat_error(file).file(), file.string());
   EXPECT_NE(std::string(mat_error(file).what()).find("not a MAT file"), std::string::npos);
   EXPECT_NE(std::string(mat_error(dir.path() / "none.mat").what()).find("cannot open"), std::string::npos);
@@ -495,9 +493,8 @@ TEST(ReducedExport, WriterRefusesWhatItCannotWriteExactly) {
   EXPECT_NE(refusal([](ReducedFrame& r) { r.K(3, 4) = kNaN; }).find("K(4, 5)"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.state_space.B(0, 0) = kInf; }).find("ss_B(1, 1)"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.checks.mac(1, 2) = kNaN; }).find("checks.mac[1][2]"), std::string::npos);
-  EXPECT_NE(
-      refusal([](ReducedFrame& r) { r.checks.mass_full.cog.y() = kInf; }).find("checks.mass_properties.full.cog[1]"),
-      std::string::npos);
+  EXPECT_NE(refusal([](ReducedFrame& r) { r.checks.mass_full.cog.y() = kInf; }).find("checks.mass_properties.full.cog[1]"),
+            std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.M.conservativeResize(20, 20); }).find("M is 20 x 20"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.mode_count = 2; }).find("mode frequencies"), std::string::npos);
   EXPECT_NE(refusal([](ReducedFrame& r) { r.support = reduction::FrameSupport::free; }).find("reference node"),
@@ -607,12 +604,9 @@ TEST_F(ReducedImport, WrongValuesNameTheirLine) {
     EXPECT_EQ(e.file(), json_path().string());
     // A needle that occurs earlier than the value is harmless: then the
     // expected line is only a lower bound, and must still be reached.
-    if (c.key == "checks.mac[2]")
-      EXPECT_GT(e.line(), line_of(text, "\"mac\": [")) << e.what();
-    else if (c.key == "damping.zeta")
-      EXPECT_EQ(e.line(), line_of(text, "\"zeta\"")) << e.what();
-    else
-      EXPECT_EQ(e.line(), line_of(text, c.needle)) << e.what();
+    if (c.key == "checks.mac[2]") EXPECT_GT(e.line(), line_of(text, "\"mac\": [")) << e.what();
+    else if (c.key == "damping.zeta") EXPECT_EQ(e.line(), line_of(text, "\"zeta\"")) << e.what();
+    else EXPECT_EQ(e.line(), line_of(text, c.needle)) << e.what();
     EXPECT_NE(std::string(e.what()).find(c.words), std::string::npos) << e.what();
   }
 }

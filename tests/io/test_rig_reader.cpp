@@ -18,8 +18,8 @@
 namespace rigflex {
 namespace {
 
-using test::line_of;
 using test::replace_first;
+using test::line_of;
 
 // Three vertical rods of 1 m at 0.4 m around P (|A - P - B| = L exactly), a
 // 100 kg body near the uniform disk of multifilar_rig() in
@@ -134,9 +134,9 @@ TEST(RigReader, MissingFileNamesIt) {
 
 TEST(RigReader, TwoRodsAreNotARig) {
   const std::string two = replace_first(kValidRig,
-                                        "    - upper: [-0.2, -0.3464, 1.0]\n      lower: [-0.2, -0.3464, 0.0]\n"
-                                        "      length: 1.0\n      encoder_axis: [0, 1, 0]\n",
-                                        "");
+                                  "    - upper: [-0.2, -0.3464, 1.0]\n      lower: [-0.2, -0.3464, 0.0]\n"
+                                  "      length: 1.0\n      encoder_axis: [0, 1, 0]\n",
+                                  "");
   // A block list's line is that of its first entry.
   expect_error(two, "    - upper: [0.4", "geometry.rods", "3 or 4 rods (got 2)");
 }
@@ -159,15 +159,13 @@ TEST(RigReader, RodLengthErrorWithAnotherRodCount) {
 
 TEST(RigReader, JointPositionErrorWithAnotherRodCount) {
   const std::string bad = std::string(kValidRig) + "  joint_position_error: {upper: [[0, 0, 0.001], [0, 0, 0]]}\n";
-  expect_error(bad, "  joint_position_error:", "effects.joint_position_error.upper",
-               "one [x, y, z] per rod (3), got 2");
+  expect_error(bad, "  joint_position_error:", "effects.joint_position_error.upper", "one [x, y, z] per rod (3), got 2");
 }
 
 // --- geometry
 
 TEST(RigReader, NonUnitEncoderAxis) {
-  const std::string bad =
-      replace_first(kValidRig, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
+  const std::string bad = replace_first(kValidRig, "encoder_axis: [-0.5, 0.8660254037844386, 0]", "encoder_axis: [-1, 1, 0]");
   expect_error(bad, "encoder_axis: [-1, 1, 0]", "geometry.rods[2].encoder_axis", "unit vector");
 }
 
@@ -180,7 +178,7 @@ TEST(RigReader, NonHorizontalEncoderAxis) {
 TEST(RigReader, RodThatCannotReach) {
   // |A - P - B| = 1 m at the nominal pose; 1.2 m is 20 % off, beyond the 5 % allowed.
   const std::string bad = replace_first(kValidRig, "      length: 1.0\n      encoder_axis: [-0.5",
-                                        "      length: 1.2\n      encoder_axis: [-0.5");
+                                  "      length: 1.2\n      encoder_axis: [-0.5");
   expect_error(bad, "length: 1.2", "geometry.rods[2].length", "cannot reach");
 }
 
@@ -199,14 +197,14 @@ TEST(RigReader, NegativeMass) {
 TEST(RigReader, InertiaNotPositiveDefinite) {
   // Jxy = 7 > Jxx = Jyy = 6.25: principal moments -0.75, 12 and 13.25.
   const std::string bad = replace_first(kValidRig, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
-                                        "inertia: [6.25, 6.25, 12.0, 7, 0, 0]");
+                                  "inertia: [6.25, 6.25, 12.0, 7, 0, 0]");
   expect_error(bad, "inertia: [6.25, 6.25, 12.0, 7, 0, 0]", "body.inertia", "positive definite");
 }
 
 TEST(RigReader, InertiaNoBodyCanHave) {
   // Positive definite, but Jzz > Jxx + Jyy: no mass distribution has it.
-  const std::string bad =
-      replace_first(kValidRig, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]", "inertia: [1, 1, 5, 0, 0, 0]");
+  const std::string bad = replace_first(kValidRig, "inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]",
+                                  "inertia: [1, 1, 5, 0, 0, 0]");
   expect_error(bad, "inertia: [1, 1, 5, 0, 0, 0]", "body.inertia", "triangle inequality");
 }
 
@@ -221,10 +219,9 @@ TEST(RigReader, BodyUncertaintyDefaultsToAStaticReferenceAndARigidIdentification
 }
 
 TEST(RigReader, ReadsTheBodyUncertainty) {
-  const std::string text =
-      replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
-                    "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
-                    "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
+  const std::string text = replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
+                                         "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
+                                         "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
   const test::TempDir dir("rigflex-rig-reader");
   test::write_text(dir.path() / "rig.yaml", text);
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
@@ -368,8 +365,8 @@ TEST(RigReader, EffectParameterOutOfRange) {
 }
 
 TEST(RigReader, FrameModelThatDoesNotExist) {
-  const std::string bad = std::string(kValidRig) +
-                          "  fixed_frame_flexibility:\n    model: no-such-frame.yaml\n    interface: upper_joints\n";
+  const std::string bad =
+      std::string(kValidRig) + "  fixed_frame_flexibility:\n    model: no-such-frame.yaml\n    interface: upper_joints\n";
   expect_error(bad, "model: no-such-frame.yaml", "effects.fixed_frame_flexibility.model", "no such file");
 }
 
@@ -410,10 +407,10 @@ TEST(RigReader, FramesByJointCompliance) {
   const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
   EXPECT_NE(m.effect("fixed_frame_flexibility"), nullptr);
   EXPECT_NE(m.effect("carrying_frame_flexibility"), nullptr);
-  expect_error(replace_first(fixed, "[1e-6, 2e-6, 3e-7], [1e-6", "[1e-6, -2e-6, 3e-7], [1e-6"),
-               "      joints:", "effects.fixed_frame_flexibility.joint_compliance.joints", ">= 0");
-  expect_error(replace_first(fixed, "      twist: 1e-6", "      spin: 1e-6"),
-               "      spin:", "effects.fixed_frame_flexibility.joint_compliance.spin", "");
+  expect_error(replace_first(fixed, "[1e-6, 2e-6, 3e-7], [1e-6", "[1e-6, -2e-6, 3e-7], [1e-6"), "      joints:",
+               "effects.fixed_frame_flexibility.joint_compliance.joints", ">= 0");
+  expect_error(replace_first(fixed, "      twist: 1e-6", "      spin: 1e-6"), "      spin:",
+               "effects.fixed_frame_flexibility.joint_compliance.spin", "");
 }
 
 // An effect given twice in one rig file is an error, not the last one winning.
@@ -437,6 +434,8 @@ TEST(RigReader, EffectsFilesReplaceByName) {
   EXPECT_THROW(io::add_effects(m, dir.path() / "bad.yaml"), io::InputError);
 }
 
+
+
 // --- reading is pure: frames are reduced by rig::resolve_frames, a step of its own
 
 TEST(RigSpec, ReadingReducesNoFrameAndResolvingGivesWhatReadRigGives) {
@@ -457,8 +456,7 @@ TEST(RigSpec, ReadingReducesNoFrameAndResolvingGivesWhatReadRigGives) {
   EXPECT_EQ(rig::RigSpec{resolved}.pending_frames(), 0);
   const rig::RigModel direct = io::read_rig(file);
   ASSERT_EQ(resolved.effects.size(), direct.effects.size());
-  for (size_t i = 0; i < direct.effects.size(); ++i)
-    EXPECT_STREQ(resolved.effects[i]->name(), direct.effects[i]->name());
+  for (size_t i = 0; i < direct.effects.size(); ++i) EXPECT_STREQ(resolved.effects[i]->name(), direct.effects[i]->name());
   const auto* a = dynamic_cast<const rig::FixedFrameFlexibility*>(resolved.effect("fixed_frame_flexibility"));
   const auto* b = dynamic_cast<const rig::FixedFrameFlexibility*>(direct.effect("fixed_frame_flexibility"));
   ASSERT_NE(a, nullptr);

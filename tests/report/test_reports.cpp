@@ -40,18 +40,17 @@ TEST(CompareReport, HasEveryPlotAndSection) {
   const report::HtmlReport r = report::compare_report(comparison(), context(), study());
   // measured/model forces + angles, residual forces + angles, 2 spectra, trend, decay, study
   EXPECT_EQ(r.plot_count(), 9);
-  for (const char* s :
-       {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces", "swing 0.54, 0.56 Hz",
-        "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history", "v1 rig.yaml",
-        "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck", "Warning: h2.csv: the model does not follow",
-        "identified − reference", "zG (mm)", "3.50"})
+  for (const char* s : {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces",
+                        "swing 0.54, 0.56 Hz", "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history",
+                        "v1 rig.yaml", "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck",
+                        "Warning: h2.csv: the model does not follow", "identified − reference", "zG (mm)", "3.50"})
     EXPECT_TRUE(has(r, s)) << s;
   const nlohmann::json data = plot_data(r);
   ASSERT_EQ(data.size(), 9u);
-  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);  // forces measured and model
-  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);  // alpha and beta measured and model
-  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);  // angle residuals
-  EXPECT_EQ(data[4]["markers"].size(), 4u);         // the model's modes
+  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);     // forces measured and model
+  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);     // alpha and beta measured and model
+  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);     // angle residuals
+  EXPECT_EQ(data[4]["markers"].size(), 4u);            // the model's modes
   EXPECT_EQ(data[8]["categories"][0], "v1 rig.yaml");
 }
 
@@ -128,9 +127,9 @@ TEST(DiagnosisReport, RanksEffectsAndAdvisesOnTheMissingOne) {
   const diagnose::Diagnosis d = diagnosis(true);
   const report::HtmlReport r = report::diagnosis_report(d, context());
   EXPECT_EQ(r.plot_count(), 3);  // ranking, baseline residual forces and angles
-  for (const char* s :
-       {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance", "12.5 ± 0.4", "N s/m",
-        "add air_drag to the rig file", "air_drag: {coefficient: 12.5}", "Missing effect: air_drag", "4.2 × the noise"})
+  for (const char* s : {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance",
+                        "12.5 ± 0.4", "N s/m", "add air_drag to the rig file", "air_drag: {coefficient: 12.5}",
+                        "Missing effect: air_drag", "4.2 × the noise"})
     EXPECT_TRUE(has(r, s)) << s;
   EXPECT_FALSE(has(r, "joint_friction *"));
   const nlohmann::json data = plot_data(r);
@@ -226,9 +225,9 @@ TEST(IdentificationHtml, TablesAndNormalProbabilityAgainstTheReference) {
   const report::IdentificationReport rep = identification(true);
   const report::HtmlReport r = report::identification_html(rep);
   EXPECT_EQ(r.plot_count(), 2);  // one per algorithm
-  for (const char* s :
-       {"rigid mean ± std", "flexible − reference", "zG − reference zG (mm)", "Welch t", "inside the rig", "s3",
-        "normal line", "flexible algorithm: CoG height", "<td>861.45 ± 1.37</td>", "<td>4200.0</td>"})
+  for (const char* s : {"rigid mean ± std", "flexible − reference", "zG − reference zG (mm)", "Welch t",
+                        "inside the rig", "s3", "normal line", "flexible algorithm: CoG height",
+                        "<td>861.45 ± 1.37</td>", "<td>4200.0</td>"})
     EXPECT_TRUE(has(r, s)) << s;
   {  // no floating-point dust (4200 ± 1e-13) in the mass properties table
     const std::string h = r.html();

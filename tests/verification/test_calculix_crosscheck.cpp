@@ -31,6 +31,7 @@
 //
 // Skipped (GTEST_SKIP) only when `ccx` is not on PATH.
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
 #include <cmath>
@@ -40,11 +41,11 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/meshers.hpp"
+#include "verification/calculix.hpp"
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
-#include "require_ccx.hpp"
 #include "support/frame_models.hpp"
-#include "verification/calculix.hpp"
+#include "require_ccx.hpp"
 
 namespace rigflex {
 namespace {
@@ -132,10 +133,10 @@ TEST(CalculixInput, WritesACompleteFrequencyDeck) {
   verification::CalculixOptions opt;
   opt.modes = 7;
   const std::string inp = verification::calculix_input(small_mixed_model(), opt);
-  for (const char* card :
-       {"*NODE, NSET=NALL", "*ELEMENT, TYPE=B32R", "SECTION=RECT", "*ELEMENT, TYPE=S4,", "*SHELL SECTION", "*MATERIAL",
-        "*ELASTIC", "*DENSITY", "*ELEMENT, TYPE=MASS", "*ELEMENT, TYPE=SPRING1", "*EQUATION", "*BOUNDARY",
-        "*STEP\n*FREQUENCY\n7\n", "*NODE FILE\nU\n", "*END STEP"})
+  for (const char* card : {"*NODE, NSET=NALL", "*ELEMENT, TYPE=B32R", "SECTION=RECT", "*ELEMENT, TYPE=S4,",
+                           "*SHELL SECTION", "*MATERIAL", "*ELASTIC", "*DENSITY", "*ELEMENT, TYPE=MASS",
+                           "*ELEMENT, TYPE=SPRING1", "*EQUATION", "*BOUNDARY", "*STEP\n*FREQUENCY\n7\n",
+                           "*NODE FILE\nU\n", "*END STEP"})
     EXPECT_NE(inp.find(card), std::string::npos) << card;
   // ccx reads at most 20 characters per field.
   std::istringstream lines(inp);
@@ -295,16 +296,13 @@ fe::Model cantilever_plate(bool quadratic, int nx, int ny, bool block) {
   p.section = "plate";
   const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
   for (int r = 0; r < g.rows; ++r)
-    if (g.at(r, 0) != 0)
-      m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
+    if (g.at(r, 0) != 0) m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
   if (block) {
     // A 20 kg block 0.1 m above the middle of the free edge, rigidly coupled
     // to three edge nodes (couplings on shell nodes, MASS element).
     const fe::NodeId ref = m.add_node(m.next_node_id(), fe::Vec3(2.0, 0.5, 0.1));
     const int mid = g.rows / 2, step = quadratic ? 2 : 1, last = g.cols - 1;
-    m.couplings.push_back({"block",
-                           ref,
-                           {g.at(mid - step, last), g.at(mid, last), g.at(mid + step, last)},
+    m.couplings.push_back({"block", ref, {g.at(mid - step, last), g.at(mid, last), g.at(mid + step, last)},
                            {true, true, true, true, true, true}});
     m.point_masses.push_back({"block", ref, 20.0, {}});
   }

@@ -15,6 +15,7 @@
 //
 // Skipped (GTEST_SKIP) only when `ccx` is not on PATH.
 #include <gtest/gtest.h>
+
 #include <unistd.h>
 
 #include <Eigen/Dense>
@@ -27,10 +28,10 @@
 
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "reduction/frame_reduction.hpp"
-#include "require_ccx.hpp"
-#include "support/frame_models.hpp"
 #include "verification/calculix.hpp"
+#include "reduction/frame_reduction.hpp"
+#include "support/frame_models.hpp"
+#include "require_ccx.hpp"
 
 namespace rigflex {
 namespace {
@@ -77,10 +78,10 @@ TEST(CalculixMatrixFiles, ParsesTheUpperTriangle) {
       EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
     }
   };
-  fails_on_line("1 1 1.0\n2 1 1.0\n", "job.mas:2:");           // below the diagonal
-  fails_on_line("1 1 1.0\n1 4 1.0\n", "job.mas:2:");           // beyond the .dof size
-  fails_on_line("1 1 1.0\n1 2 x\n", "job.mas:2:");             // not a number
-  fails_on_line("1 1 1.0\n1 2 nan\n", "job.mas:2:");           // not finite
+  fails_on_line("1 1 1.0\n2 1 1.0\n", "job.mas:2:");   // below the diagonal
+  fails_on_line("1 1 1.0\n1 4 1.0\n", "job.mas:2:");   // beyond the .dof size
+  fails_on_line("1 1 1.0\n1 2 x\n", "job.mas:2:");     // not a number
+  fails_on_line("1 1 1.0\n1 2 nan\n", "job.mas:2:");   // not finite
   fails_on_line("1 1 1.0\n2 2 1.0\n1 1 2.0\n", "job.mas:3:");  // repeated
 }
 
@@ -119,12 +120,9 @@ Condensed condense(const SpMat& K, const SpMat& M, const std::vector<Eigen::Inde
     for (Eigen::Index c = 0; c < A.outerSize(); ++c)
       for (SpMat::InnerIterator it(A, c); it; ++it) {
         const Eigen::Index r = slot[static_cast<size_t>(it.row())], s = slot[static_cast<size_t>(it.col())];
-        if (r >= 0 && s >= 0)
-          bb(r, s) = it.value();
-        else if (r < 0 && s >= 0)
-          ib(-r - 2, s) = it.value();
-        else if (r < 0 && s < 0)
-          ii.emplace_back(-r - 2, -s - 2, it.value());
+        if (r >= 0 && s >= 0) bb(r, s) = it.value();
+        else if (r < 0 && s >= 0) ib(-r - 2, s) = it.value();
+        else if (r < 0 && s < 0) ii.emplace_back(-r - 2, -s - 2, it.value());
       }
   };
   split(K, kii, Kbb, Kib);
@@ -232,13 +230,13 @@ TEST(CalculixMatrixStorage, ReproducesCcxsOwnEigenvalues) {
   // M is singular (the massless knot anchor), K is not (grounded): the
   // largest mu of M x = mu K x are the smallest 1 / lambda.
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Eigen::MatrixXd(c.M), Eigen::MatrixXd(c.K),
-                                                               Eigen::EigenvaluesOnly);
+                                                                 Eigen::EigenvaluesOnly);
   ASSERT_EQ(es.info(), Eigen::Success);
   const Eigen::VectorXd mu = es.eigenvalues();  // ascending
   for (size_t k = 0; k < f.eigenvalues.size(); ++k) {
     const double lambda = 1.0 / mu(mu.size() - 1 - static_cast<Eigen::Index>(k));
-    EXPECT_NEAR(lambda / f.eigenvalues[k], 1.0, 1e-5)
-        << "mode " << k + 1 << ": from ccx's matrices " << lambda << ", ccx " << f.eigenvalues[k];
+    EXPECT_NEAR(lambda / f.eigenvalues[k], 1.0, 1e-5) << "mode " << k + 1 << ": from ccx's matrices " << lambda
+                                                     << ", ccx " << f.eigenvalues[k];
   }
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }
