@@ -38,9 +38,62 @@ BodyParameters body_parameters(const rig::RigModel& model) {
     p.parameters.push_back(f);
     s.push_back(sigma[k]);
   }
+  // An effect's parameters: probes a tenth of the stated deviation (the
+  // effects' responses are smooth in their parameters; the deviation is the
+  // scale on which the user expects the value to be wrong).
+  int item = 0;
+  for (const auto& u : model.effect_uncertainty) {
+    for (const auto& it : u.items) {
+      p.components.push_back(BodyParameters::kEffectItems + item++);
+      rig::FitParameter f;
+      f.name = "effects." + u.effect + "." + it.name();
+      f.unit = it.unit;
+      f.probe = 0.1 * it.sigma;
+      f.low = -3 * it.sigma;
+      f.high = 3 * it.sigma;
+      p.parameters.push_back(f);
+      s.push_back(it.sigma);
+    }
+  }
   p.sigma = Eigen::Map<const Eigen::VectorXd>(s.data(), static_cast<Eigen::Index>(s.size()));
   return p;
 }
+
+namespace {
+
+// Each effect with stated uncertainties rebuilt from its parameters plus
+// their offsets, in its place among the model's effects. An effect a fit
+// moves outside what its kind accepts throws, as any rig the fit cannot
+// simulate (the fits treat that step as failed).
+void refit_effects(rig::RigModel& m, const BodyParameters& p, const Eigen::VectorXd& delta) {
+  int first = 0;
+  for (const auto& u : m.effect_uncertainty) {
+    const int n = static_cast<int>(u.items.size());
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    bool moved = false;
+    for (int i = 0; i < p.size(); ++i) {
+      const int item = p.components[i] - BodyParameters::kEffectItems - first;
+      if (item >= 0 && item < n) {
+        d(item) = delta(i);
+        moved = moved || delta(i) != 0.0;
+      }
+    }
+    first += n;
+    if (!moved) continue;
+    const rig::EffectKind& kind = *rig::find_effect_kind(u.effect);
+    rig::EffectParseContext x;
+    x.key = "effects." + u.effect;
+    x.rods = u.rods;
+    x.geometry = &m.geometry;
+    x.body_mass = m.body.mass;
+    auto rebuilt = kind.parse(rig::with_offsets(u, d), x);
+    for (auto& e : m.effects) {
+      if (u.effect == e->name()) e = rebuilt;
+    }
+  }
+}
+
+}  // namespace
 
 fe::MassProperties body_with(const fe::MassProperties& body, const BodyParameters& p, const Eigen::VectorXd& delta) {
   fe::MassProperties out = body;
@@ -68,6 +121,7 @@ rig::RigModel model_with(const rig::RigModel& model, const BodyParameters& p, co
     const double factor = std::max(1.0 + delta(i) / 100.0, 1e-3);
     for (double& k : out.rods.stiffness) k *= factor;
   }
+  refit_effects(out, p, delta);
   return out;
 }
 

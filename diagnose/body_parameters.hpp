@@ -11,7 +11,8 @@
 // posteriori fit in which the data decide wherever they can. Where the rig
 // file states how well it knows the rods' stiffness (rods.uncertainty), a
 // common factor on it is refitted the same way: a parameter already in the
-// model, suspected like the body.
+// model, suspected like the body; so are the parameters of effects already
+// in the model whose uncertainty the rig file states (rig/effect_uncertainty.hpp).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -24,8 +25,11 @@ namespace rigflex::diagnose {
 struct BodyParameters {
   // Of the ten (cog x y z, then Jxx Jyy Jzz Jxy Jxz Jyz, then the rods'
   // stiffness, an offset in % of the rig file's), those with a standard
-  // deviation above zero, in that order.
+  // deviation above zero, in that order; then kEffectItems + i for each
+  // item of the effects' stated uncertainties (RigModel::effect_uncertainty,
+  // their items in order, counted across effects).
   std::vector<int> components;
+  static constexpr int kEffectItems = 10;
   std::vector<rig::FitParameter> parameters;  // name, unit, probe, plausible range (+-3 sigma)
   Eigen::VectorXd sigma;                      // prior standard deviations
   int size() const { return static_cast<int>(components.size()); }
@@ -35,7 +39,8 @@ BodyParameters body_parameters(const rig::RigModel& model);
 
 // The body with the offsets `delta` (one per fitted component) added.
 fe::MassProperties body_with(const fe::MassProperties& body, const BodyParameters& p, const Eigen::VectorXd& delta);
-// The model with the offsets `delta` applied: the body's and the rods' stiffness.
+// The model with the offsets `delta` applied: the body's, the rods' stiffness
+// and the refitted effects' (each rebuilt by its kind from the offset parameters).
 rig::RigModel model_with(const rig::RigModel& model, const BodyParameters& p, const Eigen::VectorXd& delta);
 
 }  // namespace rigflex::diagnose

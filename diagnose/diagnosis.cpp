@@ -456,9 +456,10 @@ void follow_chain(Fitter& fit, const std::vector<EffectCandidate>& candidates, c
 std::string describe_off(const FittedParameter& p) {
   const bool length = p.unit == "m";
   const double k = length ? 1e3 : 1.0;
-  char buf[160];
-  std::snprintf(buf, sizeof buf, "%s %+.4g %s (stated +-%.3g)", p.name.c_str(), k * p.value,
-                length ? "mm" : p.unit.c_str(), k * p.prior_std);
+  const std::string unit = length ? " mm" : p.unit == "1" ? "" : " " + p.unit;  // a gain's offset has none
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s %+.4g%s (stated +-%.3g)", p.name.c_str(), k * p.value, unit.c_str(),
+                k * p.prior_std);
   return buf;
 }
 

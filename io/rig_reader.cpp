@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -241,8 +242,9 @@ struct RigFileReader {
 
   // One effect, read by its kind in the catalogue (rig/effect_kinds.hpp);
   // a frame given by files is read here, when the kind asks for it.
-  std::shared_ptr<const rig::Effect> effect(const rig::EffectKind& kind, const YAML::Node& e,
-                                            const rig::RigGeometry& g) const {
+  // An `uncertainty` the effect states goes to `uncertainty`, the rest to the kind.
+  std::shared_ptr<const rig::Effect> effect(const rig::EffectKind& kind, const YAML::Node& e, const rig::RigGeometry& g,
+                                            std::optional<rig::EffectUncertainty>& uncertainty) const {
     rig::EffectParseContext x;
     x.key = "effects." + kind.name;
     x.rods = rods;
@@ -250,7 +252,9 @@ struct RigFileReader {
     x.body_mass = mass;
     x.read_frame = [&](bool fixed) { return frame(e, x.key, fixed); };
     try {
-      return kind.parse(parameter_tree(e), x);
+      rig::ParameterValue tree = parameter_tree(e);
+      uncertainty = rig::take_uncertainty(kind, tree, rods);
+      return kind.parse(tree, x);
     } catch (const rig::ParameterError& p) {
       throw InputError(ctx.file(), p.line(), p.key(), p.reason());
     }
@@ -273,8 +277,11 @@ struct RigFileReader {
       // An effects file added to a model replaces the model's effect of that
       // name (and `enabled: false` there removes it).
       std::erase_if(model.effects, [&](const auto& x) { return name == x->name(); });
+      std::erase_if(model.effect_uncertainty, [&](const auto& x) { return name == x.effect; });
       if (!within(key, [&] { return ctx.boolean_or(e, "enabled", true); })) continue;
-      model.effects.push_back(within(key, [&] { return effect(*kind, e, model.geometry); }));
+      std::optional<rig::EffectUncertainty> uncertainty;
+      model.effects.push_back(within(key, [&] { return effect(*kind, e, model.geometry, uncertainty); }));
+      if (uncertainty) model.effect_uncertainty.push_back(std::move(*uncertainty));
     }
   }
 };

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fe/mass_properties.hpp"
+#include "rig/effect_uncertainty.hpp"
 
 namespace rigflex::rig {
 
@@ -122,6 +123,9 @@ struct RigModel {
   ReleaseOptions release;
   SimulationOptions simulation;
   std::vector<std::shared_ptr<const Effect>> effects;
+  // The effects whose parameters the rig file states an uncertainty for
+  // (`effects.<name>.uncertainty`): diagnose refits them like the body.
+  std::vector<EffectUncertainty> effect_uncertainty;
 
   // Throws std::invalid_argument naming the offending field ("rods[2].encoder_axis").
   void validate() const;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "diagnose/body_parameters.hpp"
+#include "rig/rig_system.hpp"
 #include "support/rig_cases.hpp"
 
 namespace rigflex {
@@ -92,6 +93,38 @@ TEST(BodyParameters, TheRodsStiffnessWhereItsUncertaintyIsStated) {
   // Rigid rods have no stiffness to refit.
   m.rods.stiffness.clear();
   EXPECT_EQ(diagnose::body_parameters(m).components, (std::vector<int>{0}));
+}
+
+// An effect in the model whose uncertainty the rig file states: one fitted
+// component per item, after the body's, named after the effect and key;
+// the offset rebuilds the effect with the moved value, other effects and
+// the body untouched.
+TEST(BodyParameters, AnEffectsParametersWhereTheirUncertaintyIsStated) {
+  using V = rig::ParameterValue;
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3(0.003, 0.0, 0.0);
+  m.body_uncertainty.inertia = std::array<double, 6>{0, 0, 0, 0, 0, 0};
+  const rig::EffectKind& kind = *rig::find_effect_kind("rod_mass");
+  V tree = V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(0.5)));
+  m.effect_uncertainty.push_back(*rig::take_uncertainty(kind, tree, 3));
+  rig::EffectParseContext x;
+  x.key = "effects.rod_mass";
+  x.rods = 3;
+  m.effects.push_back(kind.parse(tree, x));
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  ASSERT_EQ(p.components, (std::vector<int>{0, diagnose::BodyParameters::kEffectItems}));
+  EXPECT_EQ(p.parameters[1].name, "effects.rod_mass.mass");
+  EXPECT_EQ(p.parameters[1].unit, "kg");
+  EXPECT_DOUBLE_EQ(p.sigma(1), 0.5);
+  EXPECT_LT(p.parameters[1].probe, p.sigma(1));
+  const rig::RigModel out = diagnose::model_with(m, p, Eigen::Vector2d(0.0, 0.75));
+  ASSERT_EQ(out.effects.size(), 1u);
+  const rig::RigSystem moved(out), held(m);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_DOUBLE_EQ(moved.assembly().rod_mass[static_cast<size_t>(i)], 2.75);
+    EXPECT_DOUBLE_EQ(held.assembly().rod_mass[static_cast<size_t>(i)], 2.0);
+  }
+  EXPECT_EQ(out.body.cog, m.body.cog);
 }
 
 }  // namespace

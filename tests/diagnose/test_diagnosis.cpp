@@ -9,6 +9,7 @@
 
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/effect_candidates.hpp"
+#include "rig/effect_kinds.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
 #include "support/rig_cases.hpp"
@@ -141,6 +142,45 @@ TEST(Diagnosis, ReportsTheRodsStiffnessOffWhereItsUncertaintyIsStated) {
   EXPECT_LE(std::abs(off->value + 50.0), std::max(3 * off->std, 1.0)) << off->value << " +- " << off->std;
   EXPECT_NE(d.summary.find("model parameter off"), std::string::npos) << d.summary;
   EXPECT_NE(d.summary.find("rods.stiffness"), std::string::npos) << d.summary;
+}
+
+// A load-cell calibration already in the model (an effects file added
+// earlier: gains of 1) that states its gains to +-0.5 %, while two cells
+// are 3 % off: the gains are refitted with the body, land on the truth and
+// are reported as model parameters off - not a missing effect, and not
+// explained away by another candidate.
+TEST(Diagnosis, ReportsAnEffectInTheModelOffWhereItsUncertaintyIsStated) {
+  using V = rig::ParameterValue;
+  rig::RigModel start = trifilar();
+  const rig::EffectKind& kind = *rig::find_effect_kind("load_cell_gain");
+  V tree = V::map()
+               .set("gain", V::of(1.0))
+               .set("uncertainty", V::map().set("gain", V::of(std::vector<double>{0.005, 0.005, 0.005})));
+  start.effect_uncertainty.push_back(*rig::take_uncertainty(kind, tree, 3));
+  rig::EffectParseContext x;
+  x.key = "effects.load_cell_gain";
+  x.rods = 3;
+  start.effects.push_back(kind.parse(tree, x));
+  rig::RigModel truth = trifilar();
+  const std::vector<double> gains{1.03, 0.97, 1.0};
+  truth.effects.push_back(std::make_shared<rig::LoadCellGain>(gains, std::vector<double>{0.0, 0.0, 0.0}));
+  const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 7, {"rod_length_error", "rod_mass"});
+  std::cout << d.summary << "\n";
+  EXPECT_FALSE(d.missing_effect.has_value()) << d.summary;
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "effects.load_cell_gain.gain[" + std::to_string(i) + "]";
+    const auto fitted = std::find_if(d.body.begin(), d.body.end(), [&](const auto& p) { return p.name == name; });
+    ASSERT_NE(fitted, d.body.end()) << name << ": " << d.summary;
+    EXPECT_EQ(fitted->unit, "1");
+    EXPECT_EQ(fitted->prior_std, 0.005);
+    // Within 3 of the fit's std, or 0.2 % where that is tighter than the load cells' noise lets two records resolve.
+    const double truth_offset = gains[static_cast<size_t>(i)] - 1.0;
+    EXPECT_LE(std::abs(fitted->value - truth_offset), std::max(3 * fitted->std, 2e-3))
+        << name << " " << fitted->value << " +- " << fitted->std;
+    // Off where the truth lies 6 stated sigma away, not where it agrees.
+    EXPECT_EQ(fitted->off, i < 2) << name << " " << fitted->value;
+  }
+  EXPECT_NE(d.summary.find("model parameter off: effects.load_cell_gain.gain[0]"), std::string::npos) << d.summary;
 }
 
 TEST(Diagnosis, OptionsAreChecked) {

@@ -56,6 +56,13 @@ effects:
   air_drag: {cd_area: 0.5, enabled: false}
 )";
 
+// The rig that `text`, written to a file, states.
+rig::RigModel rig_of(const std::string& text) {
+  const test::TempDir dir("rigflex-rig-reader");
+  test::write_text(dir.path() / "rig.yaml", text);
+  return io::read_rig(dir.path() / "rig.yaml");
+}
+
 // Reads `text` from a real file (the error must name it) and returns the
 // error; fails the test if there is none.
 io::InputError rig_error_of(const std::string& text) {
@@ -222,9 +229,7 @@ TEST(RigReader, ReadsTheBodyUncertainty) {
   const std::string text = replace_first(kValidRig, "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n",
                                          "  inertia: [6.25, 6.25, 12.0, 0.5, -0.25, 0.125]\n"
                                          "  uncertainty: {cog: [0.001, 0.002, 0], inertia: [0.5, 0.6, 0.7, 0, 0.1, 0.2]}\n");
-  const test::TempDir dir("rigflex-rig-reader");
-  test::write_text(dir.path() / "rig.yaml", text);
-  const rig::RigModel m = io::read_rig(dir.path() / "rig.yaml");
+  const rig::RigModel m = rig_of(text);
   EXPECT_EQ(m.body_uncertainty.cog, rig::Vec3(0.001, 0.002, 0.0));
   ASSERT_TRUE(m.body_uncertainty.inertia.has_value());
   EXPECT_EQ(*m.body_uncertainty.inertia, (std::array<double, 6>{0.5, 0.6, 0.7, 0.0, 0.1, 0.2}));
@@ -362,6 +367,53 @@ TEST(RigReader, EffectParameterOfTheWrongType) {
 TEST(RigReader, EffectParameterOutOfRange) {
   const std::string bad = std::string(kValidRig) + "  rod_mass:\n    mass: -2.0\n";
   expect_error(bad, "mass: -2.0", "effects.rod_mass.mass", "must be >= 0");
+}
+
+// An effect's `uncertainty` states how well the model knows its values:
+// read beside the effect (which parses without it), one item per number or
+// per rod, and refused where it cannot be refitted.
+TEST(RigReader, EffectUncertaintyIsReadBesideTheEffect) {
+  const std::string text = replace_first(kValidRig, "  load_cell_gain: {gain: [1.0, 1.01, 0.99]}",
+                                         "  load_cell_gain: {gain: [1.0, 1.01, 0.99], uncertainty: {gain: [0.01, 0.02, "
+                                         "0.03], offset: 2.0}}\n  rod_mass: {mass: 1.5, uncertainty: {mass: 0.3}}");
+  const rig::RigModel m = rig_of(text);
+  ASSERT_EQ(m.effects.size(), 3u);
+  ASSERT_EQ(m.effect_uncertainty.size(), 2u);
+  const rig::EffectUncertainty& g = m.effect_uncertainty[0];
+  EXPECT_EQ(g.effect, "load_cell_gain");
+  ASSERT_EQ(g.items.size(), 4u);  // a gain per rod, one common offset
+  EXPECT_EQ(g.items[2].name(), "gain[2]");
+  EXPECT_EQ(g.items[2].sigma, 0.03);
+  EXPECT_EQ(g.items[3].name(), "offset");
+  EXPECT_EQ(g.items[3].unit, "N");
+  EXPECT_EQ(m.effect_uncertainty[1].items[0].name(), "mass");
+  // An effects file that states the effect again replaces its uncertainty too.
+  const std::string again =
+      replace_first(text, "  rod_mass: {mass: 1.5, uncertainty: {mass: 0.3}}", "  rod_mass: {mass: 1.5}");
+  EXPECT_EQ(rig_of(again).effect_uncertainty.size(), 1u);
+}
+
+TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
+  const std::string rig = kValidRig;
+  expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: {weight: 0.3}}\n", "rod_mass",
+               "effects.rod_mass.uncertainty.weight", "not a parameter of rod_mass");
+  expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: {mass: 0}}\n", "rod_mass",
+               "effects.rod_mass.uncertainty.mass", "positive standard deviation");
+  expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: {mass: [0.1, 0.1]}}\n", "rod_mass",
+               "effects.rod_mass.uncertainty.mass", "one standard deviation per rod (3)");
+  expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: 0.3}\n", "rod_mass", "effects.rod_mass.uncertainty",
+               "mapping of parameter key");
+  expect_error(
+      rig + "  joint_position_error: {upper: [[0, 0, 0], [0, 0, 0], [0, 0, 0]], uncertainty: {upper: 0.001}}\n",
+      "joint_position_error", "effects.joint_position_error.uncertainty.upper", "held as given");
+  expect_error(rig +
+                   "  rod_length_error: {delta: 0.001, uncertainty: {delta: [0.001, 0.001, 0.001]}}\n"
+                   "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, "
+                   "1e-8], [1e-7, 1e-7, 1e-8]]}\n    uncertainty: {zeta: 0.01}\n",
+               "    uncertainty: {zeta", "effects.fixed_frame_flexibility.uncertainty", "frame's parameters are held");
+  // A key the effect does not give, and which has no default, has nothing to refit.
+  expect_error(rig + "  rod_compliance: {stiffness: 1e7, uncertainty: {youngs_modulus: 1e9}}\n", "rod_compliance",
+               "effects.rod_compliance.uncertainty.youngs_modulus", "gives no 'youngs_modulus' to refit");
 }
 
 TEST(RigReader, FrameModelThatDoesNotExist) {

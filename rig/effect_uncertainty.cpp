@@ -1,0 +1,138 @@
+#include "rig/effect_uncertainty.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "rig/effect_kinds.hpp"
+
+namespace rigflex::rig {
+
+namespace {
+
+using Kind = ParameterValue::Kind;
+
+const ParameterSpec* find_spec(const EffectKind& kind, const std::string& key) {
+  for (const auto& p : kind.parameters) {
+    if (p.key == key) return &p;
+  }
+  return nullptr;
+}
+
+std::optional<double> number_of(const std::string& text) {
+  double x = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return x;
+}
+
+double standard_deviation(const ParameterValue& v, const std::string& key) {
+  const double s = ParameterReader::as_number(v, key);
+  if (!(s > 0)) ParameterReader::fail(v, key, "must be a positive standard deviation");
+  return s;
+}
+
+// The item's entry of the effect's map, added with the kind's default where the file gives none.
+ParameterValue& entry(ParameterValue& map, const EffectUncertainty::Item& it) {
+  for (auto& e : map.entries) {
+    if (e.key == it.key) return e.value;
+  }
+  map.entries.push_back({it.key, 0, ParameterValue::of(it.fallback)});
+  return map.entries.back().value;
+}
+
+double within_range(const EffectUncertainty::Item& it, double x) {
+  // An open lower bound (a gain) is kept a millionth of a standard deviation above it.
+  const double low = it.low_open ? it.low + 1e-6 * it.sigma : it.low;
+  return std::clamp(x, low, it.high);
+}
+
+}  // namespace
+
+std::string EffectUncertainty::Item::name() const { return rod < 0 ? key : key + "[" + std::to_string(rod) + "]"; }
+
+std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods) {
+  if (tree.kind != Kind::map) return std::nullopt;
+  const auto at = std::find_if(tree.entries.begin(), tree.entries.end(),
+                               [](const ParameterEntry& e) { return e.key == "uncertainty"; });
+  if (at == tree.entries.end()) return std::nullopt;
+  const ParameterValue u = at->value;
+  const int key_line = at->key_line;
+  tree.entries.erase(at);
+  // A frame is rebuilt from its files or its joint-compliance map, which a
+  // refit would have to reread at every probe: held as given.
+  const bool frame = std::any_of(kind.parameters.begin(), kind.parameters.end(),
+                                 [](const ParameterSpec& p) { return p.shape == ParameterShape::map; });
+  if (frame) {
+    throw ParameterError(key_line, "uncertainty", "a frame's parameters are held as given: not refitted");
+  }
+  if (u.kind != Kind::map || u.entries.empty()) {
+    ParameterReader::fail(u.line ? u : tree, "uncertainty",
+                          "expected a mapping of parameter key to standard deviation, e.g. {mass: 0.5}");
+  }
+  EffectUncertainty out;
+  out.effect = kind.name;
+  out.rods = rods;
+  for (const auto& e : u.entries) {
+    const std::string key = "uncertainty." + e.key;
+    const ParameterSpec* spec = find_spec(kind, e.key);
+    if (!spec) throw ParameterError(e.key_line, key, "'" + e.key + "' is not a parameter of " + kind.name);
+    if (spec->shape != ParameterShape::number && spec->shape != ParameterShape::per_rod) {
+      throw ParameterError(e.key_line, key,
+                           "only keys of one number or one per rod are refitted; '" + e.key + "' is held as given");
+    }
+    const std::optional<double> fallback = number_of(spec->default_value);
+    if (!tree[e.key].defined() && !fallback) {
+      throw ParameterError(e.key_line, key, "the effect gives no '" + e.key + "' to refit");
+    }
+    EffectUncertainty::Item item;
+    item.fallback = fallback.value_or(0.0);
+    item.key = e.key;
+    item.unit = spec->unit;
+    item.low = spec->low;
+    item.high = spec->high;
+    item.low_open = spec->low_open;
+    if (e.value.kind == Kind::list) {
+      if (spec->shape != ParameterShape::per_rod) ParameterReader::fail(e.value, key, "expected a number");
+      if (static_cast<int>(e.value.items.size()) != rods) {
+        ParameterReader::fail(e.value, key,
+                              "needs one standard deviation per rod (" + std::to_string(rods) +
+                                  ") or one for all, got " + std::to_string(e.value.items.size()));
+      }
+      for (int i = 0; i < rods; ++i) {
+        item.rod = i;
+        item.sigma = standard_deviation(e.value.items[static_cast<size_t>(i)], key);
+        out.items.push_back(item);
+      }
+    } else {
+      item.sigma = standard_deviation(e.value, key);
+      out.items.push_back(item);
+    }
+  }
+  out.parameters = tree;
+  return out;
+}
+
+ParameterValue with_offsets(const EffectUncertainty& u, const Eigen::VectorXd& delta) {
+  ParameterValue p = u.parameters;
+  for (size_t i = 0; i < u.items.size(); ++i) {
+    const EffectUncertainty::Item& it = u.items[i];
+    const double d = delta(static_cast<Eigen::Index>(i));
+    ParameterValue& v = entry(p, it);
+    if (it.rod >= 0 && v.kind == Kind::scalar) {
+      // One value for every rod, of which one rod's is refitted: a list from here.
+      v = ParameterValue::list(std::vector<ParameterValue>(static_cast<size_t>(u.rods), v));
+    }
+    auto offset = [&](ParameterValue& x) { x = ParameterValue::of(within_range(it, x.number.value_or(0.0) + d)); };
+    if (v.kind == Kind::scalar) {
+      offset(v);
+    } else if (it.rod >= 0) {
+      offset(v.items[static_cast<size_t>(it.rod)]);
+    } else {
+      for (auto& x : v.items) offset(x);
+    }
+  }
+  return p;
+}
+
+}  // namespace rigflex::rig

@@ -1,0 +1,57 @@
+#pragma once
+// How well the rig file knows an effect already in the model: its
+// `effects.<name>.uncertainty` mapping, one standard deviation per parameter
+// key. diagnose refits those parameters with every candidate, like the
+// body's mass properties, the standard deviations as Gaussian priors
+// (diagnose/body_parameters.hpp); a fitted change beyond 3 of them is
+// reported as "model parameter off". An effect added earlier with a wrong
+// value is then corrected where the data can tell, not explained away by
+// another effect.
+//
+// What can be refitted: the numbers of a key that holds one number or one
+// per rod (friction, drag coefficients, sensor offsets and gains, rod mass,
+// stiffness and length errors). A scalar standard deviation refits one
+// common offset added to every rod's value; a list of one per rod refits
+// each rod's value on its own. The frames (files, joint-compliance maps)
+// and the vector keys (joint positions, a drag centre) are held as given.
+#include <Eigen/Core>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rig/effect_parameters.hpp"
+
+namespace rigflex::rig {
+
+struct EffectKind;  // rig/effect_kinds.hpp, which needs the rig model this is part of
+
+struct EffectUncertainty {
+  struct Item {
+    std::string key;   // the parameter's key
+    int rod = -1;      // the rod whose value it offsets; -1: every rod's (or the one number)
+    double sigma = 0;  // standard deviation, in the parameter's unit
+    std::string unit;
+    double low = -INFINITY, high = INFINITY;  // the parameter's physical range
+    bool low_open = false;
+    double fallback = 0;       // the kind's default, where the file gives no value
+    std::string name() const;  // "mass" or "mass[2]"
+  };
+  std::string effect;         // the spec's name
+  ParameterValue parameters;  // the effect's parameters as the file gives them, `uncertainty` taken out
+  int rods = 0;
+  std::vector<Item> items;
+};
+
+// Takes `uncertainty` out of an effect's parameter tree (which the effect's
+// own parse then reads without it) and checks it against the kind; none if
+// the tree has none. Throws ParameterError naming the line and key
+// ("uncertainty.mass") relative to the effect.
+std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods);
+
+// The effect's parameters with delta(i) added to item i's value (a value the
+// file gives as one number for every rod becomes a list where an item
+// offsets one rod), kept within the parameter's physical range.
+ParameterValue with_offsets(const EffectUncertainty& u, const Eigen::VectorXd& delta);
+
+}  // namespace rigflex::rig

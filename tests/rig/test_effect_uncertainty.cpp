@@ -1,0 +1,83 @@
+// An effect's stated uncertainty (rig/effect_uncertainty.hpp): taken out of
+// the effect's parameters so that its kind reads them as before, and the
+// offsets diagnose fits put back on the right numbers, within the
+// parameter's physical range.
+#include <gtest/gtest.h>
+
+#include "rig/effect_kinds.hpp"
+#include "rig/effect_uncertainty.hpp"
+
+using namespace rigflex;
+
+namespace {
+
+using V = rig::ParameterValue;
+
+double number(const V& map, const std::string& key, int rod = -1) {
+  const V& v = map[key];
+  return rod < 0 ? *v.number : *v.items[static_cast<size_t>(rod)].number;
+}
+
+TEST(EffectUncertainty, TakenOutOfTheEffectsParameters) {
+  V tree = V::map().set("mass", V::of(1.5)).set("uncertainty", V::map().set("mass", V::of(0.3)));
+  const auto u = rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), tree, 3);
+  ASSERT_TRUE(u);
+  EXPECT_FALSE(tree["uncertainty"].defined());
+  EXPECT_FALSE(u->parameters["uncertainty"].defined());
+  ASSERT_EQ(u->items.size(), 1u);
+  EXPECT_EQ(u->items[0].sigma, 0.3);
+  EXPECT_EQ(u->items[0].unit, "kg");
+  // Without an uncertainty: none, the tree untouched.
+  V plain = V::map().set("mass", V::of(1.5));
+  EXPECT_FALSE(rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), plain, 3));
+  EXPECT_EQ(plain, V::map().set("mass", V::of(1.5)));
+}
+
+// A common offset moves every rod's value; a per-rod one moves its rod's
+// only (one value for all rods becomes a list); a key the file leaves at
+// its default is offset from the default.
+TEST(EffectUncertainty, OffsetsGoOnTheirNumbers) {
+  V tree = V::map()
+               .set("offset", V::of(std::vector<double>{1.0, 2.0, 3.0}))
+               .set("uncertainty",
+                    V::map().set("offset", V::of(0.5)).set("gain", V::of(std::vector<double>{0.01, 0.01, 0.01})));
+  const auto u = rig::take_uncertainty(*rig::find_effect_kind("load_cell_gain"), tree, 3);
+  ASSERT_TRUE(u);
+  ASSERT_EQ(u->items.size(), 4u);
+  Eigen::Vector4d d(0.25, 0.02, 0.0, -0.03);
+  const V p = rig::with_offsets(*u, d);
+  for (int i = 0; i < 3; ++i) EXPECT_DOUBLE_EQ(number(p, "offset", i), 1.0 + i + 0.25);
+  EXPECT_DOUBLE_EQ(number(p, "gain", 0), 1.02);  // the default gain, 1
+  EXPECT_DOUBLE_EQ(number(p, "gain", 1), 1.0);
+  EXPECT_DOUBLE_EQ(number(p, "gain", 2), 0.97);
+  // The kind reads the result.
+  rig::EffectParseContext x;
+  x.key = "effects.load_cell_gain";
+  x.rods = 3;
+  EXPECT_NO_THROW(rig::find_effect_kind("load_cell_gain")->parse(p, x));
+
+  V masses = V::map()
+                 .set("mass", V::of(2.0))
+                 .set("uncertainty", V::map().set("mass", V::of(std::vector<double>{0.1, 0.2, 0.3})));
+  const auto m = rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), masses, 3);
+  const V q = rig::with_offsets(*m, Eigen::Vector3d(0.0, 0.5, 0.0));
+  ASSERT_EQ(q["mass"].kind, V::Kind::list);
+  EXPECT_DOUBLE_EQ(number(q, "mass", 0), 2.0);
+  EXPECT_DOUBLE_EQ(number(q, "mass", 1), 2.5);
+  EXPECT_DOUBLE_EQ(number(q, "mass", 2), 2.0);
+}
+
+// A fit that asks for less than nothing gets the range's edge: a mass of 0,
+// a gain just above 0 (its range is open there).
+TEST(EffectUncertainty, OffsetsStayWithinThePhysicalRange) {
+  V masses = V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(1.0)));
+  const auto m = rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), masses, 3);
+  EXPECT_EQ(number(rig::with_offsets(*m, Eigen::VectorXd::Constant(1, -5.0)), "mass"), 0.0);
+  V gains = V::map().set("gain", V::of(1.0)).set("uncertainty", V::map().set("gain", V::of(0.1)));
+  const auto g = rig::take_uncertainty(*rig::find_effect_kind("load_cell_gain"), gains, 3);
+  const double low = number(rig::with_offsets(*g, Eigen::VectorXd::Constant(1, -2.0)), "gain");
+  EXPECT_GT(low, 0.0);
+  EXPECT_LT(low, 1e-6);
+}
+
+}  // namespace
