@@ -72,9 +72,14 @@ void print_body(const diagnose::Diagnosis& d) {
     return;
   }
   const bool rods = std::any_of(d.body.begin(), d.body.end(), [](const auto& p) { return p.name == "rods.stiffness"; });
-  std::printf("body%s fitted with %s (offset from the rig file, its std, the stated std):\n",
-              rods ? " and rods' stiffness" : "", verdict_model(d).c_str());
-  const int width = rods ? 14 : 6;
+  const bool effects =
+      std::any_of(d.body.begin(), d.body.end(), [](const auto& p) { return p.name.rfind("effects.", 0) == 0; });
+  std::string also = rods ? " and rods' stiffness" : "";
+  if (effects) also += " and effects' values";
+  std::printf("body%s fitted with %s (offset from the rig file, its std, the stated std):\n", also.c_str(),
+              verdict_model(d).c_str());
+  int width = 6;
+  for (const auto& p : d.body) width = std::max(width, static_cast<int>(p.name.size()));
   for (const auto& p : d.body) {
     const double k = p.unit == "m" ? 1e3 : 1.0;
     const char* unit = p.unit == "m" ? "mm" : p.unit.c_str();

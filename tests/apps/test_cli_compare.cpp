@@ -87,19 +87,29 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
                 " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
 }
 
+// Two records of 8 s simulated from kCompareRig + `truth` into dir/data,
+// then diagnose of kCompareRig + `rig` on them, the candidates limited to
+// `only`, into dir/diag.
+CliRun simulate_and_diagnose(const fs::path& dir, const std::string& truth, const std::string& rig,
+                             const std::string& only) {
+  fs::create_directories(dir);
+  std::ofstream(dir / "truth.yaml") << kCompareRig << truth;
+  std::ofstream(dir / "rig.yaml") << kCompareRig << rig;
+  const CliRun sim = run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
+                         (dir / "data").string() + " --quiet");
+  if (sim.code != 0) return sim;
+  return run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() + " --only " + only +
+             " --out " + (dir / "diag").string() + " --quiet");
+}
+
 // The rig file states the rods' stiffness and how well it is known; the
 // rods measured are twice as compliant: diagnose names no missing effect,
 // reports the stiffness off, prints it with the body, and writes it to
 // diagnosis.json.
 TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   const fs::path dir = fresh_dir("rods_off");
-  fs::create_directories(dir);
-  std::ofstream(dir / "truth.yaml") << kCompareRig << "rods: {stiffness: 2.5e5}\n";
-  std::ofstream(dir / "rig.yaml") << kCompareRig << "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n";
-  ASSERT_EQ(run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
-                (dir / "data").string() + " --quiet").code, 0);
-  const CliRun r = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
-                       " --only rod_compliance --out " + (dir / "diag").string() + " --quiet");
+  const CliRun r = simulate_and_diagnose(dir, "rods: {stiffness: 2.5e5}\n",
+                                         "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n", "rod_compliance");
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("model parameter off: rods.stiffness"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("body and rods' stiffness fitted"), std::string::npos) << r.out;
@@ -116,6 +126,29 @@ TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   EXPECT_NE(bad.out.find("bad.yaml:"), std::string::npos) << bad.out;
   EXPECT_NE(bad.out.find("rods.uncertainty.stiffness"), std::string::npos) << bad.out;
   EXPECT_FALSE(fs::exists(dir / "x"));
+  fs::remove_all(dir);
+}
+
+// An effect the rig file already has, with its values' uncertainty: two
+// load cells calibrated to +-0.5 % read 3 % high and low. diagnose names
+// no missing effect, reports both gains off (the third not), prints them
+// with the body and writes them to diagnosis.json.
+TEST(CliDiagnose, ReportsAnEffectsValueOff) {
+  const fs::path dir = fresh_dir("effect_off");
+  const CliRun r = simulate_and_diagnose(
+      dir, "effects:\n  load_cell_gain: {gain: [1.03, 0.97, 1.0]}\n",
+      "effects:\n  load_cell_gain: {gain: 1.0, uncertainty: {gain: [0.005, 0.005, 0.005]}}\n", "rod_length_error");
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("model parameter off: effects.load_cell_gain.gain[0]"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("body and effects' values fitted"), std::string::npos) << r.out;
+  const auto j = read_json(dir / "diag" / "diagnosis.json");
+  EXPECT_TRUE(j["missing_effect"].is_null()) << j["summary"];
+  EXPECT_EQ(j["model_parameters_off"],
+            nlohmann::json::array({"effects.load_cell_gain.gain[0]", "effects.load_cell_gain.gain[1]"}));
+  EXPECT_EQ(j["body"]["effects.load_cell_gain.gain[2]"]["off"], false);
+  // Within 3 of its std or 0.2 % (the two short records' resolution) of the truth's +3 %.
+  const auto& g0 = j["body"]["effects.load_cell_gain.gain[0]"];
+  EXPECT_LE(std::abs(g0["offset"].get<double>() - 0.03), std::max(3 * g0["std"].get<double>(), 2e-3)) << g0;
   fs::remove_all(dir);
 }
 
