@@ -81,12 +81,7 @@ void refit_effects(rig::RigModel& m, const BodyParameters& p, const Eigen::Vecto
     first += n;
     if (!moved) continue;
     const rig::EffectKind& kind = *rig::find_effect_kind(u.effect);
-    rig::EffectParseContext x;
-    x.key = "effects." + u.effect;
-    x.rods = u.rods;
-    x.geometry = &m.geometry;
-    x.body_mass = m.body.mass;
-    auto rebuilt = kind.parse(rig::with_offsets(u, d), x);
+    auto rebuilt = kind.parse(rig::with_offsets(u, d), rig::parse_context(m, u.effect));
     for (auto& e : m.effects) {
       if (u.effect == e->name()) e = rebuilt;
     }

@@ -1,5 +1,7 @@
 #include "rig/effect_kinds.hpp"
 
+#include <stdexcept>
+
 #include "rig/effect_kind_entries.hpp"
 
 namespace rigflex::rig {
@@ -27,6 +29,18 @@ const EffectKind* find_effect_kind(const std::string& name) {
     if (k.name == name) return &k;
   }
   return nullptr;
+}
+
+EffectParseContext parse_context(const RigModel& model, const std::string& name) {
+  EffectParseContext x;
+  x.key = "effects." + name;
+  x.rods = model.geometry.rod_count();
+  x.geometry = &model.geometry;
+  x.body_mass = model.body.mass;
+  x.read_frame = [key = x.key](bool) -> FrameSource {
+    throw std::logic_error(key + ": a frame's files are read by the rig file's reader, not here");
+  };
+  return x;
 }
 
 const std::vector<const char*>& effect_names() {

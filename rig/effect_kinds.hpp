@@ -110,6 +110,12 @@ struct EffectKind {
   std::function<EffectFitting(const FitContext&)> fit;
 };
 
+// The context in which the values of `model` itself state effect `name`:
+// its rods, geometry and body mass; no frame files to read (read_frame
+// throws std::logic_error). For diagnose's refits of an effect the model
+// has (rig/effect_uncertainty.hpp) and the catalogue's tests.
+EffectParseContext parse_context(const RigModel& model, const std::string& name);
+
 // The catalogue in the spec's order.
 const std::vector<EffectKind>& effect_kinds();
 const EffectKind* find_effect_kind(const std::string& name);  // nullptr: none of that name

@@ -104,13 +104,8 @@ TEST(BodyParameters, AnEffectsParametersWhereTheirUncertaintyIsStated) {
   rig::RigModel m = test::noisy_trifilar();
   m.body_uncertainty.cog = rig::Vec3(0.003, 0.0, 0.0);
   m.body_uncertainty.inertia = std::array<double, 6>{0, 0, 0, 0, 0, 0};
-  const rig::EffectKind& kind = *rig::find_effect_kind("rod_mass");
-  V tree = V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(0.5)));
-  m.effect_uncertainty.push_back(*rig::take_uncertainty(kind, tree, 3));
-  rig::EffectParseContext x;
-  x.key = "effects.rod_mass";
-  x.rods = 3;
-  m.effects.push_back(kind.parse(tree, x));
+  test::add_effect(m, "rod_mass",
+                   V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(0.5))));
   const diagnose::BodyParameters p = diagnose::body_parameters(m);
   ASSERT_EQ(p.components, (std::vector<int>{0, diagnose::BodyParameters::kEffectItems}));
   EXPECT_EQ(p.parameters[1].name, "effects.rod_mass.mass");

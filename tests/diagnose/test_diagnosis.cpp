@@ -9,7 +9,6 @@
 
 #include "diagnose/diagnosis.hpp"
 #include "diagnose/effect_candidates.hpp"
-#include "rig/effect_kinds.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
 #include "support/rig_cases.hpp"
@@ -152,15 +151,10 @@ TEST(Diagnosis, ReportsTheRodsStiffnessOffWhereItsUncertaintyIsStated) {
 TEST(Diagnosis, ReportsAnEffectInTheModelOffWhereItsUncertaintyIsStated) {
   using V = rig::ParameterValue;
   rig::RigModel start = trifilar();
-  const rig::EffectKind& kind = *rig::find_effect_kind("load_cell_gain");
-  V tree = V::map()
-               .set("gain", V::of(1.0))
-               .set("uncertainty", V::map().set("gain", V::of(std::vector<double>{0.005, 0.005, 0.005})));
-  start.effect_uncertainty.push_back(*rig::take_uncertainty(kind, tree, 3));
-  rig::EffectParseContext x;
-  x.key = "effects.load_cell_gain";
-  x.rods = 3;
-  start.effects.push_back(kind.parse(tree, x));
+  test::add_effect(start, "load_cell_gain",
+                   V::map()
+                       .set("gain", V::of(1.0))
+                       .set("uncertainty", V::map().set("gain", V::of(std::vector<double>{0.005, 0.005, 0.005}))));
   rig::RigModel truth = trifilar();
   const std::vector<double> gains{1.03, 0.97, 1.0};
   truth.effects.push_back(std::make_shared<rig::LoadCellGain>(gains, std::vector<double>{0.0, 0.0, 0.0}));

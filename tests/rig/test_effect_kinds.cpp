@@ -89,16 +89,6 @@ std::string table_in(const std::string& doc, const std::string& header) {
   return out;
 }
 
-rig::EffectParseContext parse_context(const rig::EffectKind& k, const rig::RigModel& m) {
-  rig::EffectParseContext x;
-  x.key = "effects." + k.name;
-  x.rods = m.geometry.rod_count();
-  x.geometry = &m.geometry;
-  x.body_mass = m.body.mass;
-  x.read_frame = [](bool) -> rig::FrameSource { throw std::logic_error("no frame files in these tests"); };
-  return x;
-}
-
 }  // namespace
 
 TEST(EffectKinds, EveryKindIsComplete) {
@@ -149,7 +139,7 @@ TEST(EffectKinds, ParseOfWriteIsTheFittedEffect) {
     const Eigen::VectorXd x = test::sample_values(f);
     const auto made = f.make(x);
     ASSERT_TRUE(made) << k.name;
-    const auto parsed = k.parse(f.write(x), parse_context(k, m));
+    const auto parsed = k.parse(f.write(x), rig::parse_context(m, k.name));
     ASSERT_TRUE(parsed) << k.name;
     EXPECT_NO_THROW(parsed->validate(m.geometry.rod_count())) << k.name;
     test::expect_same_action(*made, *parsed, m, 1e-12);
@@ -173,7 +163,7 @@ TEST(EffectKinds, RodComplianceAddsToTheNominalRods) {
   with.effects.push_back(made);
   const Eigen::VectorXd got = rig::RigSystem(with).rod_stiffness();
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(got(i), 1.0 / (1.0 / m.rods.stiffness[i] + added), 1e-9 * got(i)) << i;
-  const auto parsed = k->parse(f.write(Eigen::VectorXd::Constant(1, added)), parse_context(*k, m));
+  const auto parsed = k->parse(f.write(Eigen::VectorXd::Constant(1, added)), rig::parse_context(m, k->name));
   ASSERT_TRUE(parsed);
   test::expect_same_action(*made, *parsed, m, 1e-12);
 }
@@ -202,7 +192,7 @@ TEST(EffectKinds, ParseErrorsNameLineAndKey) {
   wrong.line = 7;
   e.set("mass", wrong);
   try {
-    k.parse(e, parse_context(k, m));
+    k.parse(e, rig::parse_context(m, k.name));
     FAIL() << "a list of one mass for three rods was taken";
   } catch (const rig::ParameterError& x) {
     EXPECT_EQ(x.line(), 7);

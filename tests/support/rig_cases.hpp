@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "rig/effect_kinds.hpp"
 #include "rig/linearization.hpp"
 #include "rig/rig_model.hpp"
 
@@ -43,6 +44,17 @@ inline rig::RigModel noisy_trifilar() {
   m.sensors.force_noise_n = 1.0;
   m.sensors.angle_noise_rad = 2e-5;
   return m;
+}
+
+// The effect `name` with these parameters added to `m` as a rig file's
+// `effects:` block adds it (io/rig_reader.cpp): its `uncertainty`, if any,
+// to m.effect_uncertainty, the rest parsed by the effect's kind.
+inline void add_effect(rig::RigModel& m, const std::string& name, rig::ParameterValue parameters) {
+  const rig::EffectKind& kind = *rig::find_effect_kind(name);
+  if (auto u = rig::take_uncertainty(kind, parameters, m.geometry.rod_count())) {
+    m.effect_uncertainty.push_back(std::move(*u));
+  }
+  m.effects.push_back(kind.parse(parameters, rig::parse_context(m, name)));
 }
 
 // The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
