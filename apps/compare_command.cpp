@@ -1,7 +1,9 @@
 // rigflex compare RIG.yaml DATA... --out DIR [--effects FILE]... [--reference FILE]
-//   [--study DIR] [--fit-window S] [--threads N] [--quiet]:
+//   [--study DIR] [--fit-window S] [--threads N] [--hold-body] [--quiet]:
 // the model against measured histories: the swing state fitted to each
-// record's first seconds, the record simulated, residuals per channel and
+// record's first seconds, the body's mass properties (and any parameter
+// whose uncertainty the rig file states) refitted with the swing states
+// unless --hold-body, the record simulated, residuals per channel and
 // where they concentrate, the mass properties identified with the model's
 // algorithm; DIR/compare.json, DIR/model/*.csv (the model's signals, in the
 // measurement format), and, with --study, the error of this model version
@@ -11,15 +13,16 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
+#include "apps/parameter_table.hpp"
+#include "diagnose/model_comparison.hpp"
 #include "io/atomic_file.hpp"
-#include "report/compare_json.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
-#include "report/reports.hpp"
 #include "io/rig_reader.hpp"
+#include "report/compare_json.hpp"
+#include "report/reports.hpp"
 #include "report/study.hpp"
 #include "rig/equilibrium.hpp"
-#include "diagnose/model_comparison.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -30,7 +33,7 @@ struct CompareArgs {
   std::string reference, study, out;
   double fit_window = 0;
   int threads = 0;
-  bool quiet = false;
+  bool quiet = false, hold_body = false;
 };
 
 rig::Record model_history(const diagnose::HistoryComparison& h, int rods, const std::string& label) {
@@ -41,6 +44,26 @@ rig::Record model_history(const diagnose::HistoryComparison& h, int rods, const 
   t.alpha = h.model.middleCols(rods, rods);
   t.beta = h.model.rightCols(rods);
   return t;
+}
+
+// The refit of the model's own parameters: what to correct in the rig file.
+void print_model_fit(const diagnose::ModelComparison& c) {
+  if (!c.model_fit) return;
+  const diagnose::ModelParameterFit& f = *c.model_fit;
+  if (!f.credible) {
+    std::printf(
+        "%s: as the rig file gives it (refitted, the model stays at %.3g x the noise; there the offsets "
+        "would absorb a missing effect: run rigflex diagnose)\n",
+        fitted_parameters_label(f.parameters).c_str(), f.noise_ratio);
+    return;
+  }
+  std::printf(
+      "%s refitted (offset from the rig file, its std, the stated std); residual / noise %.3g -> %.3g, "
+      "force NRMSE %.4f as stated:\n",
+      fitted_parameters_label(f.parameters).c_str(), f.noise_ratio_as_stated, f.noise_ratio,
+      c.as_stated ? c.as_stated->force : 0.0);
+  print_parameter_table(f.parameters);
+  for (const auto& p : f.off) std::printf("model parameter off: %s\n", diagnose::describe_off(p).c_str());
 }
 
 void print_table(const diagnose::ModelComparison& c) {
@@ -57,6 +80,7 @@ void print_table(const diagnose::ModelComparison& c) {
   for (const auto& s : c.analysis.correlations) {
     std::printf("residual vs %-16s largest correlation %+.2f (%s)\n", s.state.c_str(), s.largest, s.channel.c_str());
   }
+  print_model_fit(c);
   if (c.identified) {
     const auto& p = c.identified->properties;
     std::printf("identified (%s): m %.2f kg, CoG (%.4f, %.4f, %.4f) m\n", identify::to_string(c.algorithm), p.mass,
@@ -90,7 +114,11 @@ int compare_with(MeasuredModel& mm, const CompareArgs& a) {
   diagnose::ModelComparisonOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
-  if (!a.quiet) o.progress = [](int done, int total) { std::fprintf(stderr, "compare: history %d/%d\n", done, total); };
+  o.fit_model = !a.hold_body;
+  if (!a.quiet) {
+    o.progress = [](int done, int total) { std::fprintf(stderr, "compare: history %d/%d\n", done, total); };
+    o.fit_progress = [](const std::string& s) { std::fprintf(stderr, "compare: %s\n", s.c_str()); };
+  }
   std::unique_ptr<diagnose::ResponseModel> model;
   try {
     model = std::make_unique<diagnose::ResponseModel>(mm.model);
@@ -115,7 +143,8 @@ int compare_with(MeasuredModel& mm, const CompareArgs& a) {
     // A version: the model files, the options that change the errors, and the data compared with.
     std::vector<std::filesystem::path> inputs = mm.model_files;
     for (const auto& r : mm.records) inputs.emplace_back(r.provenance.file);
-    e.fingerprint = report::model_fingerprint(inputs, "fit_window=" + std::to_string(o.compare.fit_window_s));
+    e.fingerprint = report::model_fingerprint(
+        inputs, "fit_window=" + std::to_string(o.compare.fit_window_s) + (a.hold_body ? " hold_body" : ""));
     e.effects = mm.effect_names;
     e.overall_nrmse = c.overall_nrmse;
     e.force_nrmse = c.force_nrmse;
@@ -168,6 +197,9 @@ void add_compare_command(CLI::App& app, int& exit_code) {
       ->check(positive());
   cmd->add_option("--threads", a->threads, "histories compared in parallel (0: all cores)");
   cmd->add_option("--out", a->out, "output folder")->required();
+  cmd->add_flag("--hold-body", a->hold_body,
+                "compare the body (and every parameter with a stated uncertainty) as the rig file gives it, not "
+                "refitted");
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });
 }

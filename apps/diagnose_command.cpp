@@ -14,12 +14,13 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
+#include "apps/parameter_table.hpp"
+#include "diagnose/diagnosis.hpp"
 #include "io/atomic_file.hpp"
 #include "io/effects_file.hpp"
+#include "io/rig_reader.hpp"
 #include "report/compare_json.hpp"
 #include "report/reports.hpp"
-#include "io/rig_reader.hpp"
-#include "diagnose/diagnosis.hpp"
 #include "rig/equilibrium.hpp"
 
 namespace rigflex::app {
@@ -71,21 +72,9 @@ void print_body(const diagnose::Diagnosis& d) {
                 verdict_model(d).c_str(), misfit);
     return;
   }
-  const bool rods = std::any_of(d.body.begin(), d.body.end(), [](const auto& p) { return p.name == "rods.stiffness"; });
-  const bool effects =
-      std::any_of(d.body.begin(), d.body.end(), [](const auto& p) { return p.name.rfind("effects.", 0) == 0; });
-  std::string also = rods ? " and rods' stiffness" : "";
-  if (effects) also += " and effects' values";
-  std::printf("body%s fitted with %s (offset from the rig file, its std, the stated std):\n", also.c_str(),
-              verdict_model(d).c_str());
-  int width = 6;
-  for (const auto& p : d.body) width = std::max(width, static_cast<int>(p.name.size()));
-  for (const auto& p : d.body) {
-    const double k = p.unit == "m" ? 1e3 : 1.0;
-    const char* unit = p.unit == "m" ? "mm" : p.unit.c_str();
-    std::printf("  %-*s %+10.4g +- %-9.3g %s (stated %.3g)%s\n", width, p.name.c_str(), k * p.value, k * p.std, unit,
-                k * p.prior_std, p.off ? "  OFF" : "");
-  }
+  std::printf("%s fitted with %s (offset from the rig file, its std, the stated std):\n",
+              fitted_parameters_label(d.body).c_str(), verdict_model(d).c_str());
+  print_parameter_table(d.body);
 }
 
 int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "diagnose/baseline_fit.hpp"
 #include "diagnose/effect_candidates.hpp"
 #include "diagnose/effect_chain.hpp"
 #include "diagnose/fit_discrimination.hpp"
@@ -50,22 +51,6 @@ double f_test_p_value(double improvement, double dof1, double residual, double d
   return boost::math::cdf(boost::math::complement(dist, F));
 }
 
-// The baseline: the model as it is, the body refitted (`at`); and where
-// every candidate's fit starts: the swing states refitted to the whole
-// records with the body as the rig file gives it (`start`), and the
-// Jacobians there, shared. Candidates start from the rig file's body, not
-// from the baseline's: a model that misses an effect by far more than the
-// noise pulls the body to wherever it absorbs most of the effect, a start
-// from which the effect's own fit may not recover.
-struct Baseline {
-  std::vector<SwingState> initial_states;  // compare's, where a continuation fit starts
-  FitPoint start;                          // theta: zero body offsets
-  std::vector<Eigen::MatrixXd> Js, Jbody;  // at `start`
-  FitPoint at;                             // theta: the body's fitted offsets
-  Eigen::MatrixXd schur_inverse;
-  double dof = 0;  // the F test's residual degrees of freedom before any effect parameter
-};
-
 void progress(const DiagnosisOptions& options, const std::string& s) {
   if (options.progress) options.progress(s);
 }
@@ -86,42 +71,6 @@ void compare_histories(const ResponseModel& base, const std::vector<const rig::R
     }
   });
   d.baseline_analysis = analyse_residuals(base, d.baseline);
-}
-
-// The baseline fits (states alone, then states and body), and the
-// diagnosis' residual, sample count and noise ratio.
-Baseline fit_baseline(Fitter& fit, const rig::RigModel& model, const ResponseModel& base,
-                      const std::vector<const BandTarget*>& targets, const std::vector<SwingState>& states,
-                      const DiagnosisOptions& options, Diagnosis& d) {
-  const int H = fit.histories();
-  // Every candidate is scored by what it gains over this fit: what the
-  // baseline leaves unconverged a candidate would gain as if it were its
-  // effect. The baseline's two fits are cheap beside the catalogue's, so
-  // they relinearize while a linearization gains more than 1 %.
-  DiagnosisOptions tight = options;
-  tight.relinearize_gain = std::min(options.relinearize_gain, DiagnosisOptions::kBaselineRelinearizeGain);
-  Baseline b;
-  b.initial_states = states;
-  progress(options, "fitting the swing states to the whole records");
-  Fitter plain(model, base, targets, BodyParameters{}, options.threads);
-  const FitPoint first = evaluate(plain, nullptr, Eigen::VectorXd(), states);
-  const std::vector<Eigen::MatrixXd> none(static_cast<size_t>(H));
-  const FitOutcome s = fit_nonlinear(plain, nullptr, first, plain.state_jacobians(base, states, first.r), none, tight);
-  b.start = evaluate(fit, nullptr, Eigen::VectorXd::Zero(fit.body_size()), s.at.states);
-  b.Js = fit.state_jacobians(base, b.start.states, b.start.r);
-  progress(options, "fitting the body's mass properties with the swing states");
-  b.Jbody = fit.parameter_jacobians(nullptr, b.start.theta, b.start.states, b.start.r);
-  FitOutcome o = fit_nonlinear(fit, nullptr, b.start, b.Js, b.Jbody, tight);
-  b.at = std::move(o.at);
-  b.schur_inverse = o.schur_inverse;
-  d.residual = b.at.data;
-  d.samples = 0;
-  for (const auto& x : b.at.r) d.samples += static_cast<double>(x.size());
-  d.independence = 0;
-  for (const auto* t : targets) d.independence += t->band.independence() / static_cast<double>(targets.size());
-  d.noise_ratio = b.at.data / d.samples;
-  b.dof = d.independence * (d.samples - (6.0 * H + fit.body_size()) / d.independence);
-  return b;
 }
 
 // The catalogue's effects the model lacks, of those asked for.
@@ -210,41 +159,6 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
     o.note = std::string("the staged fit failed: ") + x.what();
   }
   return {o, h};
-}
-
-// Fitted values with their standard deviations from the last linearization
-// (parameters [first, first + specs.size()) of theta): the noise-weighted
-// residual has unit variance per sample at the noise, the band's samples are
-// correlated (1 / independence), and a misfit left over scales it up.
-std::vector<FittedParameter> fitted_values(const std::vector<CandidateParameter>& specs, int first, const FitPoint& at,
-                                           const Eigen::MatrixXd& schur_inverse, int fitted, const Diagnosis& d) {
-  const int H = static_cast<int>(d.baseline.size());
-  const double variance = std::max(1.0, at.data / std::max(d.samples - 6.0 * H - fitted, 1.0)) / d.independence;
-  std::vector<FittedParameter> out;
-  for (size_t i = 0; i < specs.size(); ++i) {
-    const int k = first + static_cast<int>(i);
-    FittedParameter fp;
-    fp.name = specs[i].name;
-    fp.unit = specs[i].unit;
-    fp.value = at.theta(k);
-    fp.std = specs[i].probe * std::sqrt(std::max(variance * schur_inverse(k, k), 0.0));
-    fp.low = specs[i].low;
-    fp.high = specs[i].high;
-    fp.plausible = fp.value >= fp.low - 3 * fp.std && fp.value <= fp.high + 3 * fp.std;
-    out.push_back(fp);
-  }
-  return out;
-}
-
-std::vector<FittedParameter> body_values(const Fitter& fit, const FitPoint& at, const Eigen::MatrixXd& schur_inverse,
-                                         const Diagnosis& d) {
-  auto out = fitted_values(fit.body().parameters, 0, at, schur_inverse, static_cast<int>(at.theta.size()), d);
-  for (size_t i = 0; i < out.size(); ++i) {
-    out[i].prior_std = fit.body().sigma(static_cast<Eigen::Index>(i));
-    out[i].plausible = true;  // the body has no physical range here: see `off`
-    out[i].off = std::abs(out[i].value) > DiagnosisOptions::kOffSigmas * out[i].prior_std;
-  }
-  return out;
 }
 
 // The candidate's fit scored: share explained, F test, significance.
@@ -452,17 +366,6 @@ void follow_chain(Fitter& fit, const std::vector<EffectCandidate>& candidates, c
   }
 }
 
-// A model parameter that is off, in words: name, offset, stated std.
-std::string describe_off(const FittedParameter& p) {
-  const bool length = p.unit == "m";
-  const double k = length ? 1e3 : 1.0;
-  const std::string unit = length ? " mm" : p.unit == "1" ? "" : " " + p.unit;  // a gain's offset has none
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "%s %+.4g%s (stated +-%.3g)", p.name.c_str(), k * p.value, unit.c_str(),
-                k * p.prior_std);
-  return buf;
-}
-
 // The first significant effect, the model's parameters that moved beyond
 // what the rig file states, and the one-line verdict.
 void conclude(Diagnosis& d, const DiagnosisOptions& options) {
@@ -516,6 +419,16 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
 }
 
 }  // namespace
+
+std::string describe_off(const FittedParameter& p) {
+  const bool length = p.unit == "m";
+  const double k = length ? 1e3 : 1.0;
+  const std::string unit = length ? " mm" : p.unit == "1" ? "" : " " + p.unit;  // a gain's offset has none
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s %+.4g%s (stated +-%.3g)", p.name.c_str(), k * p.value, unit.c_str(),
+                k * p.prior_std);
+  return buf;
+}
 
 Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
                    const std::vector<std::string>& sources, const DiagnosisOptions& options) {

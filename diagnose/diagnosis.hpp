@@ -150,6 +150,9 @@ struct Diagnosis {
   std::string summary;  // one line: the verdict
 };
 
+// A model parameter that is off, in words: "cog.z +8.1 mm (stated +-2)".
+std::string describe_off(const FittedParameter& p);
+
 Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Record*>& records,
                    const std::vector<std::string>& sources, const DiagnosisOptions& options);
 

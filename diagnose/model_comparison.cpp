@@ -9,10 +9,10 @@
 
 namespace rigflex::diagnose {
 
-ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::Record*>& records,
-                              const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
-  options.compare.validate();
-  if (records.empty()) throw std::invalid_argument("compare needs at least one history");
+namespace {
+
+ModelComparison compare_as_given(const ResponseModel& m, const std::vector<const rig::Record*>& records,
+                                 const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
   const int H = static_cast<int>(records.size());
   const int n = m.system.rods();
   ModelComparison c;
@@ -57,24 +57,57 @@ ModelComparison compare_model(const ResponseModel& m, const std::vector<const ri
     }
   }
 
-  if (options.identify) {
-    const bool flexible = m.system.assembly().fixed_frame || m.system.assembly().carrying_frame ||
-                          !m.system.assembly().rod_stiffness.empty();
-    c.algorithm = flexible ? identify::IdentificationAlgorithm::flexible : identify::IdentificationAlgorithm::rigid;
-    try {
-      const identify::IdentificationRig idr = identify::identification_rig(m.system.model(), c.algorithm);
-      identify::IdentificationResult r = identify::identify(idr, records, {});
-      if (r.observable) {
-        c.identified = std::move(r);
-      } else {
-        c.identification_error = r.message;
-      }
-    } catch (const rig::RecordError&) {
-      throw;
-    } catch (const std::exception& e) {
-      c.identification_error = e.what();
+  return c;
+}
+
+// The mass properties from the records with the model's algorithm.
+void identify_with(const ResponseModel& m, const std::vector<const rig::Record*>& records, ModelComparison& c) {
+  const bool flexible = m.system.assembly().fixed_frame || m.system.assembly().carrying_frame ||
+                        !m.system.assembly().rod_stiffness.empty();
+  c.algorithm = flexible ? identify::IdentificationAlgorithm::flexible : identify::IdentificationAlgorithm::rigid;
+  try {
+    const identify::IdentificationRig idr = identify::identification_rig(m.system.model(), c.algorithm);
+    identify::IdentificationResult r = identify::identify(idr, records, {});
+    if (r.observable) {
+      c.identified = std::move(r);
+    } else {
+      c.identification_error = r.message;
     }
+  } catch (const rig::RecordError&) {
+    throw;
+  } catch (const std::exception& e) {
+    c.identification_error = e.what();
   }
+}
+
+}  // namespace
+
+ModelComparison compare_model(const ResponseModel& m, const std::vector<const rig::Record*>& records,
+                              const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
+  options.compare.validate();
+  if (records.empty()) throw std::invalid_argument("compare needs at least one history");
+  const rig::RigModel& model = m.system.model();
+  if (!options.fit_model || body_parameters(model).size() == 0) {
+    ModelComparison c = compare_as_given(m, records, sources, options);
+    if (options.identify) identify_with(m, records, c);
+    return c;
+  }
+  ModelComparison stated = compare_as_given(m, records, sources, options);
+  ModelParameterFit fit =
+      fit_model_parameters(model, m, stated.histories, {options.compare, options.threads, options.fit_progress});
+  ModelComparison c;
+  if (fit.credible) {
+    if (options.fit_progress) options.fit_progress("comparing the model with its parameters refitted");
+    const ResponseModel refitted(fit.model);
+    c = compare_as_given(refitted, records, sources, options);
+    c.as_stated = ModelComparison::Nrmse{stated.overall_nrmse, stated.force_nrmse, stated.angle_nrmse};
+    // The identification does not use the body; it does use refitted rods and effects.
+    if (options.identify) identify_with(refitted, records, c);
+  } else {
+    c = std::move(stated);
+    if (options.identify) identify_with(m, records, c);
+  }
+  c.model_fit = std::move(fit);
   return c;
 }
 

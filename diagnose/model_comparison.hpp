@@ -3,16 +3,21 @@
 // (diagnose/history_comparison.hpp), the residuals analysed (diagnose/residual_analysis.hpp), the
 // mass properties identified from the same records with the model's
 // algorithm (flexible when the model has a flexible frame or rods), and the
-// checks that tell a user the model does not fit the data at all.
+// checks that tell a user the model does not fit the data at all. With
+// `fit_model`, the body (and each model parameter whose uncertainty the rig
+// file states) is refitted with the swing states first, as diagnose's
+// baseline (diagnose/baseline_fit.hpp): a user's body is never exact, and its
+// error would otherwise show as the model's.
 #include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "fe/mass_properties.hpp"
+#include "diagnose/baseline_fit.hpp"
 #include "diagnose/history_comparison.hpp"
-#include "identify/identification.hpp"
 #include "diagnose/residual_analysis.hpp"
+#include "fe/mass_properties.hpp"
+#include "identify/identification.hpp"
 
 namespace rigflex::diagnose {
 
@@ -28,13 +33,23 @@ struct ModelComparison {
   std::optional<identify::IdentificationResult> identified;  // empty with identification_error set
   std::string identification_error;
   std::vector<std::string> warnings;  // what to check when the model does not follow the data
+  // The model's own parameters refitted (ModelComparisonOptions::fit_model).
+  // Where that fit is credible every figure above is the refitted model's,
+  // and `as_stated` holds the rig file's model's NRMSEs.
+  std::optional<ModelParameterFit> model_fit;
+  struct Nrmse {
+    double overall = 0, force = 0, angle = 0;
+  };
+  std::optional<Nrmse> as_stated;
 };
 
 struct ModelComparisonOptions {
   CompareOptions compare;
   bool identify = true;
+  bool fit_model = false;  // refit the body and the stated-uncertain parameters first
   int threads = 0;
   std::function<void(int done, int total)> progress;
+  std::function<void(const std::string&)> fit_progress;  // the model fit's stages
 };
 
 // RecordError-free: a record that does not fit the rig throws

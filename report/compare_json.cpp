@@ -54,6 +54,37 @@ Json identified_json(const diagnose::ModelComparison& c, const CompareContext& x
   return j;
 }
 
+// The body's fitted offsets from the rig file's values, by parameter.
+Json body_offsets_json(const std::vector<diagnose::FittedParameter>& body) {
+  Json o = Json::object();
+  for (const auto& p : body) {
+    o[p.name] = {{"offset", finite_or_null(p.value)},
+                 {"std", finite_or_null(p.std)},
+                 {"unit", p.unit},
+                 {"stated_std", finite_or_null(p.prior_std)},
+                 {"off", p.off}};
+  }
+  return o;
+}
+// compare's refit of the model's own parameters.
+Json model_fit_json(const diagnose::ModelComparison& c) {
+  const diagnose::ModelParameterFit& f = *c.model_fit;
+  Json j;
+  j["credible"] = f.credible;
+  j["residual_to_noise_as_stated"] = finite_or_null(f.noise_ratio_as_stated);
+  j["residual_to_noise"] = finite_or_null(f.noise_ratio);
+  if (c.as_stated) {
+    j["as_stated"] = {{"overall_nrmse", finite_or_null(c.as_stated->overall)},
+                      {"force_nrmse", finite_or_null(c.as_stated->force)},
+                      {"angle_nrmse", finite_or_null(c.as_stated->angle)}};
+  }
+  j["parameters"] = body_offsets_json(f.parameters);
+  Json off = Json::array();
+  for (const auto& p : f.off) off.push_back(p.name);
+  j["model_parameters_off"] = off;
+  return j;
+}
+
 // Per history: errors, the fitted swing and elastic states, noise.
 Json histories_json(const std::vector<diagnose::HistoryComparison>& histories, const std::vector<std::string>& channels) {
   Json hs = Json::array();
@@ -157,19 +188,11 @@ Json compare_json(const diagnose::ModelComparison& c, const CompareContext& x) {
   j["histories"] = histories_json(c.histories, c.channels);
   j["where_it_fails"] = where_it_fails_json(c.analysis, c.channels);
   j["identified"] = identified_json(c, x);
+  if (c.model_fit) j["model_fit"] = model_fit_json(c);
   return j;
 }
 
 namespace {
-// The body's fitted offsets from the rig file's values, by parameter.
-Json body_offsets_json(const std::vector<diagnose::FittedParameter>& body) {
-  Json o = Json::object();
-  for (const auto& p : body) {
-    o[p.name] = {{"offset", finite_or_null(p.value)}, {"std", finite_or_null(p.std)}, {"unit", p.unit},
-                 {"stated_std", finite_or_null(p.prior_std)}, {"off", p.off}};
-  }
-  return o;
-}
 // The fitted values by name.
 Json parameters_json(const std::vector<diagnose::FittedParameter>& parameters) {
   Json params = Json::object();

@@ -427,6 +427,34 @@ void chain_section(HtmlReport& r, const diagnose::Diagnosis& d) {
                 keep_indentation(d.chain.back().rig_block));
 }
 
+// compare's refit of the body (and the parameters whose uncertainty the rig
+// file states): the offsets to correct in the rig file, those beyond what
+// it states marked.
+void model_fit_section(HtmlReport& r, const diagnose::ModelComparison& c) {
+  if (!c.model_fit) return;
+  const diagnose::ModelParameterFit& f = *c.model_fit;
+  r.heading("The model's own parameters refitted");
+  if (!f.credible) {
+    r.paragraph("Not used: refitted, the model stays at " + fmt("%.3g", f.noise_ratio) + " x the noise (" +
+                fmt("%.3g", f.noise_ratio_as_stated) +
+                " x as the rig file states it); there the offsets would absorb a missing effect. The figures above "
+                "are the rig file's model's; run rigflex diagnose.");
+    return;
+  }
+  r.paragraph("Residual / noise " + fmt("%.3g", f.noise_ratio_as_stated) + " as the rig file states the model, " +
+              fmt("%.3g", f.noise_ratio) + " refitted; force NRMSE " +
+              fmt("%.4f", c.as_stated ? c.as_stated->force : 0.0) + " -> " + fmt("%.4f", c.force_nrmse) +
+              ". The figures above are the refitted model's.");
+  Table t{{"parameter", "offset from the rig file", "std", "stated std", "off"}, {}};
+  for (const auto& p : f.parameters) {
+    const double k = p.unit == "m" ? 1e3 : 1.0;
+    const std::string unit = p.unit == "m" ? " mm" : p.unit == "1" ? "" : " " + p.unit;
+    t.rows.push_back({p.name, fmt("%+.4g", k * p.value) + unit, fmt("%.3g", k * p.std), fmt("%.3g", k * p.prior_std),
+                      p.off ? "OFF" : ""});
+  }
+  r.table(t, "Offsets beyond 3 stated standard deviations are marked OFF: correct them in the rig file");
+}
+
 void baseline_section(HtmlReport& r, const diagnose::Diagnosis& d, Eigen::Index channels,
                       const diagnose::ResidualAnalysis* analysis) {
   if (d.baseline.empty()) return;
@@ -454,6 +482,7 @@ HtmlReport compare_report(const diagnose::ModelComparison& c, const CompareConte
   analysis_sections(r, c.analysis, sources);
   correlation_table(r, c.analysis.correlations, c.channels);
   windows_table(r, c.analysis.windows, sources);
+  model_fit_section(r, c);
   study_section(r, study);
   identified_section(r, c, ctx);
   return r;

@@ -88,18 +88,58 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
 }
 
 // Two records of 8 s simulated from kCompareRig + `truth` into dir/data,
-// then diagnose of kCompareRig + `rig` on them, the candidates limited to
-// `only`, into dir/diag.
-CliRun simulate_and_diagnose(const fs::path& dir, const std::string& truth, const std::string& rig,
-                             const std::string& only) {
+// and kCompareRig + `rig` written as dir/rig.yaml.
+CliRun simulate_records(const fs::path& dir, const std::string& truth, const std::string& rig) {
   fs::create_directories(dir);
   std::ofstream(dir / "truth.yaml") << kCompareRig << truth;
   std::ofstream(dir / "rig.yaml") << kCompareRig << rig;
-  const CliRun sim = run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
-                         (dir / "data").string() + " --quiet");
+  return run("simulate " + (dir / "truth.yaml").string() + " --histories 2 --duration 8 --seed 4 --out " +
+             (dir / "data").string() + " --quiet");
+}
+
+// simulate_records, then diagnose of dir/rig.yaml on them, the candidates
+// limited to `only`, into dir/diag.
+CliRun simulate_and_diagnose(const fs::path& dir, const std::string& truth, const std::string& rig,
+                             const std::string& only) {
+  const CliRun sim = simulate_records(dir, truth, rig);
   if (sim.code != 0) return sim;
   return run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() + " --only " + only +
              " --out " + (dir / "diag").string() + " --quiet");
+}
+
+// compare refits the body and what the rig file states an uncertainty for
+// (here the rods' stiffness, stated to 10 %, while the rods measured are
+// twice as compliant): the stiffness reported off on the terminal and in
+// compare.json, the comparison made with the refitted model (its force
+// NRMSE below the rig file's model's, kept beside it), the report's
+// section; --hold-body compares the rig file's model as it is.
+TEST(CliCompareRefit, ReportsAModelParameterOff) {
+  const fs::path dir = fresh_dir("compare_refit");
+  ASSERT_EQ(
+      simulate_records(dir, "rods: {stiffness: 2.5e5}\n", "rods: {stiffness: 5.0e5, uncertainty: {stiffness: 0.1}}\n")
+          .code,
+      0);
+  const std::string args = (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string();
+  const CliRun r = run("compare " + args + " --out " + (dir / "c").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("body and rods' stiffness refitted"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("model parameter off: rods.stiffness"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("compare: fitting the body's mass properties"), std::string::npos) << r.out;
+  const auto j = read_json(dir / "c" / "compare.json");
+  const auto& f = j["model_fit"];
+  EXPECT_EQ(f["credible"], true) << f;
+  EXPECT_EQ(f["model_parameters_off"], nlohmann::json::array({"rods.stiffness"}));
+  EXPECT_NEAR(f["parameters"]["rods.stiffness"]["offset"].get<double>(), -50.0, 1.0) << f;
+  EXPECT_LT(j["force_nrmse"].get<double>(), 0.5 * f["as_stated"]["force_nrmse"].get<double>()) << f;
+  std::ifstream html(dir / "c" / "compare.html");
+  const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("own parameters refitted"), std::string::npos);
+  const CliRun held = run("compare " + args + " --hold-body --quiet --out " + (dir / "h").string());
+  ASSERT_EQ(held.code, 0) << held.out;
+  const auto jh = read_json(dir / "h" / "compare.json");
+  EXPECT_FALSE(jh.contains("model_fit"));
+  EXPECT_EQ(jh["force_nrmse"], f["as_stated"]["force_nrmse"]);
+  fs::remove_all(dir);
 }
 
 // The rig file states the rods' stiffness and how well it is known; the
