@@ -161,6 +161,12 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
   return {o, h};
 }
 
+Eigen::VectorXd standard_deviations(const std::vector<FittedParameter>& ps) {
+  Eigen::VectorXd s(static_cast<Eigen::Index>(ps.size()));
+  for (size_t i = 0; i < ps.size(); ++i) s(static_cast<Eigen::Index>(i)) = ps[i].std;
+  return s;
+}
+
 // The candidate's fit scored: share explained, F test, significance.
 // Ranked by the joint fit (the body refitted); its values - the effect's
 // and the body's - are reported only where that fit reaches the noise
@@ -210,7 +216,9 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
   ef.significant = rss > (1.0 + options.noise_excess) * d.samples && ef.p_value < options.significance &&
                    ef.explained_fraction >= options.min_explained &&
                    (rss - cost) >= options.min_excess_share * excess && ef.plausible;
-  if (c.make(theta)) ef.rig_block = c.rig_block(theta);  // none when the fit amounts to no effect
+  // None when the fit amounts to no effect; with the values' uncertainty,
+  // so that the effect, once added, is refitted like any stated value.
+  if (c.make(theta)) ef.rig_block = c.rig_block(theta, standard_deviations(ef.parameters));
   return ef;
 }
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "rig/effect_uncertainty.hpp"
+
 namespace rigflex::diagnose {
 
 CandidateContext candidate_context(const rig::RigSystem& rig, double lowest_swing_hz) {
@@ -28,9 +30,15 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& context) 
   for (const rig::EffectKind& kind : rig::effect_kinds()) {
     rig::EffectFitting f = kind.fit(context);
     auto write = f.write;
-    out.push_back({kind.name, std::move(f.parameters), std::move(f.make),
-                   [name = kind.name, write](const Eigen::VectorXd& p) { return rig::effect_yaml(name, write(p)); },
-                   std::move(f.advice), std::move(f.evidence), f.stand_in});
+    auto block = [&kind, write](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
+      rig::ParameterValue v = write(theta);
+      if (std.size() > 0) {
+        if (auto u = rig::fitted_uncertainty(kind, write, theta, std)) v.set("uncertainty", std::move(*u));
+      }
+      return rig::effect_yaml(kind.name, v);
+    };
+    out.push_back({kind.name, std::move(f.parameters), std::move(f.make), std::move(block), std::move(f.advice),
+                   std::move(f.evidence), f.stand_in});
   }
   return out;
 }

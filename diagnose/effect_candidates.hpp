@@ -29,9 +29,11 @@ struct EffectCandidate {
   // The effect with these parameter values (non-negative ones clamped at 0);
   // nullptr when the values amount to no effect (a compliance of zero).
   std::function<std::shared_ptr<const rig::Effect>(const Eigen::VectorXd&)> make;
-  // Rig-file block (YAML, under `effects:`) that adds the effect with these
-  // values: the kind's parameters written by rig::effect_yaml.
-  std::function<std::string(const Eigen::VectorXd&)> rig_block;
+  // Rig-file block (YAML, under `effects:`) that adds the effect with the
+  // values theta: the kind's parameters written by rig::effect_yaml, with
+  // their `uncertainty` propagated from the fit's standard deviations `std`
+  // (rig::fitted_uncertainty; none where `std` is empty).
+  std::function<std::string(const Eigen::VectorXd& theta, const Eigen::VectorXd& std)> rig_block;
   std::string advice;                               // what to add to capture it properly
   std::string evidence;                             // a measurement that shows it directly
   bool stand_in = false;                            // rig::EffectFitting::stand_in

@@ -68,11 +68,15 @@ EffectCandidate chained_candidate(const std::vector<const EffectCandidate*>& acc
     if (made.size() == 1) return made.front();
     return std::make_shared<EffectGroup>(std::move(made));
   };
-  c.rig_block = [segments](const Eigen::VectorXd& theta) {
+  c.rig_block = [members](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
     std::string block;
-    segments(theta, [&](const EffectCandidate& m, const Eigen::VectorXd& x) {
-      if (m.make(x)) block += m.rig_block(x);
-    });
+    Eigen::Index at = 0;
+    for (const EffectCandidate* m : members) {
+      const auto n = static_cast<Eigen::Index>(m->parameters.size());
+      const Eigen::VectorXd x = theta.segment(at, n);
+      if (m->make(x)) block += m->rig_block(x, std.size() > 0 ? Eigen::VectorXd(std.segment(at, n)) : std);
+      at += n;
+    }
     return block;
   };
   return c;

@@ -47,7 +47,60 @@ double within_range(const EffectUncertainty::Item& it, double x) {
   return std::clamp(x, low, it.high);
 }
 
+// A frame is rebuilt from its files or its joint-compliance map, which a
+// refit would have to reread at every probe: held as given.
+bool is_frame(const EffectKind& kind) {
+  return std::any_of(kind.parameters.begin(), kind.parameters.end(),
+                     [](const ParameterSpec& p) { return p.shape == ParameterShape::map; });
+}
+
+// A key's numbers: one, or one per rod; empty for anything else.
+std::vector<double> numbers(const ParameterValue& v) {
+  if (v.kind == Kind::scalar && v.number) return {*v.number};
+  std::vector<double> out;
+  if (v.kind != Kind::list) return out;
+  for (const auto& x : v.items) {
+    if (x.kind != Kind::scalar || !x.number) return {};
+    out.push_back(*x.number);
+  }
+  return out;
+}
+
 }  // namespace
+
+std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
+                                                 const std::function<ParameterValue(const Eigen::VectorXd&)>& write,
+                                                 const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
+  if (is_frame(kind)) return std::nullopt;
+  const ParameterValue at = write(theta);
+  if (at.kind != Kind::map || std.size() != theta.size()) return std::nullopt;
+  std::vector<ParameterValue> moved;  // write() one standard deviation along each parameter
+  for (Eigen::Index j = 0; j < theta.size(); ++j) {
+    Eigen::VectorXd t = theta;
+    t(j) += std(j);
+    moved.push_back(write(t));
+  }
+  ParameterValue u = ParameterValue::map();
+  for (const auto& e : at.entries) {
+    const ParameterSpec* spec = find_spec(kind, e.key);
+    if (!spec || (spec->shape != ParameterShape::number && spec->shape != ParameterShape::per_rod)) continue;
+    const std::vector<double> x = numbers(e.value);
+    if (x.empty()) continue;
+    std::vector<double> var(x.size(), 0.0);
+    for (const auto& m : moved) {
+      const std::vector<double> y = numbers(m[e.key]);
+      if (y.size() != x.size()) return std::nullopt;  // write() changes shape with its values: not linearizable
+      for (size_t i = 0; i < x.size(); ++i) var[i] += (y[i] - x[i]) * (y[i] - x[i]);
+    }
+    std::vector<double> sigma;
+    for (double v : var) sigma.push_back(std::sqrt(v));
+    if (!std::all_of(sigma.begin(), sigma.end(), [](double s) { return s > 0 && std::isfinite(s); })) continue;
+    u.set(e.key, sigma.size() == 1 && e.value.kind == Kind::scalar ? ParameterValue::of(sigma.front())
+                                                                   : ParameterValue::of(sigma));
+  }
+  if (u.entries.empty()) return std::nullopt;
+  return u;
+}
 
 std::string EffectUncertainty::Item::name() const { return rod < 0 ? key : key + "[" + std::to_string(rod) + "]"; }
 
@@ -59,11 +112,7 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
   const ParameterValue u = at->value;
   const int key_line = at->key_line;
   tree.entries.erase(at);
-  // A frame is rebuilt from its files or its joint-compliance map, which a
-  // refit would have to reread at every probe: held as given.
-  const bool frame = std::any_of(kind.parameters.begin(), kind.parameters.end(),
-                                 [](const ParameterSpec& p) { return p.shape == ParameterShape::map; });
-  if (frame) {
+  if (is_frame(kind)) {
     throw ParameterError(key_line, "uncertainty", "a frame's parameters are held as given: not refitted");
   }
   if (u.kind != Kind::map || u.entries.empty()) {

@@ -16,6 +16,7 @@
 // and the vector keys (joint positions, a drag centre) are held as given.
 #include <Eigen/Core>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,18 @@ struct EffectUncertainty {
 // the tree has none. Throws ParameterError naming the line and key
 // ("uncertainty.mass") relative to the effect.
 std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods);
+
+// The `uncertainty` mapping of a fitted effect's rig-file parameters
+// `written` = write(theta) (rig::EffectFitting::write): each number or
+// per-rod key's standard deviation propagated from the fit's (`std`, one
+// per parameter of theta) to first order, over one standard deviation of
+// each parameter, their correlations neglected. Keys the fit leaves
+// unchanged, or changes for some rods only, get none; none at all where no
+// key has one, and none for a frame (held as given). diagnose writes it into its effects files, so the effect,
+// once added, is refitted by later fits like any value the user states.
+std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
+                                                 const std::function<ParameterValue(const Eigen::VectorXd&)>& write,
+                                                 const Eigen::VectorXd& theta, const Eigen::VectorXd& std);
 
 // The effect's parameters with delta(i) added to item i's value (a value the
 // file gives as one number for every rod becomes a list where an item

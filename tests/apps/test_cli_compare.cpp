@@ -82,9 +82,19 @@ TEST_F(CliCompare, DiagnoseNamesTheEffectAndWritesItsFile) {
   EXPECT_EQ(j["chain"][0]["rig_block"], j["ranking"][0]["rig_block"]);
   EXPECT_TRUE(j["tested_after_chain"].empty());
   EXPECT_TRUE(fs::exists(out / "effects" / "found.yaml"));
-  // The written effect file is a valid --effects file.
-  EXPECT_EQ(run("compare " + rig().string() + " " + data() + " --effects " + (out / "effects" / "rod_length_error.yaml").string() +
-                " --out " + (*dir_ / "cmp3").string() + " --quiet").code, 0);
+  // The written effect file is a valid --effects file, with its values'
+  // uncertainty (the fit's standard deviations), which compare then
+  // refits with the body: the model as found is within them.
+  const std::string block = j["chain"][0]["rig_block"];
+  EXPECT_NE(block.find("uncertainty:"), std::string::npos) << block;
+  const CliRun again =
+      run("compare " + rig().string() + " " + data() + " --effects " +
+          (out / "effects" / "rod_length_error.yaml").string() + " --out " + (*dir_ / "cmp3").string() + " --quiet");
+  EXPECT_EQ(again.code, 0) << again.out;
+  EXPECT_NE(again.out.find("body and effects' values refitted"), std::string::npos) << again.out;
+  EXPECT_EQ(again.out.find("model parameter off"), std::string::npos) << again.out;
+  const auto c = read_json(*dir_ / "cmp3" / "compare.json");
+  EXPECT_TRUE(c["model_fit"]["parameters"].contains("effects.rod_length_error.delta[0]")) << c["model_fit"];
 }
 
 // Two records of 8 s simulated from kCompareRig + `truth` into dir/data,

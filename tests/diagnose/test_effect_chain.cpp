@@ -103,7 +103,7 @@ TEST(ChainedCandidate, TheAcceptedParametersFirstThenTheNext) {
   ASSERT_TRUE(made);
   const diagnose::EffectGroup both({lengths.make(a), gains.make(b)});
   test::expect_same_action(*made, both, test::noisy_trifilar(), 1e-15);
-  EXPECT_EQ(c.rig_block(theta), lengths.rig_block(a) + gains.rig_block(b));
+  EXPECT_EQ(c.rig_block(theta, {}), lengths.rig_block(a, {}) + gains.rig_block(b, {}));
 
   // A next effect at a value that amounts to none (a compliance of zero):
   // the accepted one alone, under its own name.
@@ -113,7 +113,7 @@ TEST(ChainedCandidate, TheAcceptedParametersFirstThenTheNext) {
   tz.head(static_cast<Eigen::Index>(pa)) = a;
   ASSERT_TRUE(cz.make(tz));
   EXPECT_EQ(std::string(cz.make(tz)->name()), "rod_length_error");
-  EXPECT_EQ(cz.rig_block(tz), lengths.rig_block(a));
+  EXPECT_EQ(cz.rig_block(tz, {}), lengths.rig_block(a, {}));
   // Without a next one: the accepted effects alone, named after the last.
   const diagnose::EffectCandidate held = diagnose::chained_candidate(accepted, nullptr);
   EXPECT_EQ(held.effect, "rod_length_error");

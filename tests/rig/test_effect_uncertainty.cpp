@@ -81,3 +81,45 @@ TEST(EffectUncertainty, OffsetsStayWithinThePhysicalRange) {
 }
 
 }  // namespace
+
+// A fitted effect's uncertainty, as diagnose writes it into its effects
+// files: a key that is a parameter itself gets its standard deviation; a
+// key computed from the parameters gets it propagated to first order (a
+// stiffness k = 1 / c: sigma_k = sigma_c / c^2 within the secant's 10 %
+// over one sigma of 10 % of c); a key fed by two parameters the quadrature
+// of both; a key that does not move (clamped at zero) gets none; and the
+// block reads back through take_uncertainty with those deviations.
+TEST(EffectUncertainty, FittedUncertaintyIsPropagatedFromTheFit) {
+  const rig::EffectKind& lengths = *rig::find_effect_kind("rod_length_error");
+  auto delta = [](const Eigen::VectorXd& p) { return V::map().set("delta", V::of(p)); };
+  const Eigen::VectorXd theta = Eigen::Vector3d(0.003, -0.002, 0.0);
+  const Eigen::VectorXd sd = Eigen::Vector3d(1e-4, 2e-4, 3e-4);
+  const auto u = rig::fitted_uncertainty(lengths, delta, theta, sd);
+  ASSERT_TRUE(u);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(number(*u, "delta", i), sd(i), 1e-15) << i;
+  V tree = delta(theta).set("uncertainty", *u);
+  const auto back = rig::take_uncertainty(lengths, tree, 3);
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->items.size(), 3u);
+  EXPECT_NEAR(back->items[1].sigma, 2e-4, 1e-15);
+
+  const rig::EffectKind& rods = *rig::find_effect_kind("rod_compliance");
+  auto stiffness = [](const Eigen::VectorXd& p) { return V::map().set("stiffness", V::of(1.0 / p(0))); };
+  const Eigen::VectorXd c = Eigen::VectorXd::Constant(1, 1e-6), sc = Eigen::VectorXd::Constant(1, 1e-7);
+  const auto uk = rig::fitted_uncertainty(rods, stiffness, c, sc);
+  ASSERT_TRUE(uk);
+  EXPECT_NEAR(number(*uk, "stiffness"), 1e-7 / 1e-12, 0.1 * 1e-7 / 1e-12);
+
+  const rig::EffectKind& friction = *rig::find_effect_kind("joint_friction");
+  auto both = [](const Eigen::VectorXd& p) {
+    return V::map().set("viscous", V::of(p(0) + p(1))).set("coulomb", V::of(std::max(p(1), 0.0) * 0.0));
+  };
+  const auto uf = rig::fitted_uncertainty(friction, both, Eigen::Vector2d(0.2, 0.1), Eigen::Vector2d(0.03, 0.04));
+  ASSERT_TRUE(uf);
+  EXPECT_NEAR(number(*uf, "viscous"), 0.05, 1e-12);
+  EXPECT_FALSE((*uf)["coulomb"].defined());
+  // Only vector keys: none at all.
+  const rig::EffectKind& joints = *rig::find_effect_kind("joint_position_error");
+  auto upper = [](const Eigen::VectorXd& p) { return V::map().set("upper", V::list({V::of(p), V::of(p), V::of(p)})); };
+  EXPECT_FALSE(rig::fitted_uncertainty(joints, upper, Eigen::Vector3d(1e-3, 0, 0), Eigen::Vector3d(1e-4, 1e-4, 1e-4)));
+}
