@@ -1,5 +1,5 @@
 // bench_diagnosis_seeds [--seeds N] [--first S] [--cases a,b,...] [--threads N]
-//                       [--relinearizations N] [--refinements N] [--test-seed]:
+//                       [--relinearizations N] [--refinements N] [--test-seed] [--verbose]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
 // tests/support/diagnosis_cases.hpp, two controls (nothing hidden; air drag
@@ -22,7 +22,9 @@
 // --relinearizations and --refinements set diagnose's fit budget (defaults:
 // DiagnosisOptions'), for studies of what more iterations buy. --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
-// gives it, to study the CI's case.
+// gives it, to study the CI's case. --verbose prints each run's ranking
+// (explained share, significance, F-test p, residual / noise) and chain
+// on stderr.
 // Deterministic for the given seeds.
 #include <algorithm>
 #include <cmath>
@@ -44,7 +46,7 @@ struct Options {
   int seeds = 5, threads = 0;
   rigflex::diagnose::DiagnosisOptions diagnosis;
   std::uint64_t first = 1;
-  bool test_seed = false;
+  bool test_seed = false, verbose = false;
   std::vector<std::string> cases;
 };
 
@@ -60,6 +62,8 @@ Options parse(int argc, char** argv) {
       o.cases = bench::split(bench::option_value(argc, argv, i));
     } else if (a == "--test-seed") {
       o.test_seed = true;
+    } else if (a == "--verbose") {
+      o.verbose = true;
     } else if (a == "--threads") {
       o.threads = std::stoi(bench::option_value(argc, argv, i));
     } else if (a == "--relinearizations") {
@@ -81,6 +85,20 @@ struct Row {
   double worst_fall = INFINITY, worst_zg_fit = 0, worst_zg_id = 0, seconds = 0, noise_ratio = 0;
   std::string misses;  // what was named where the hidden effect was not
 };
+
+void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diagnosis& d) {
+  std::fprintf(stderr, "%s seed %llu: baseline %.3g x the noise; %s\n", name.c_str(),
+               static_cast<unsigned long long>(seed), d.noise_ratio, d.summary.c_str());
+  for (const auto& e : d.ranking) {
+    std::fprintf(stderr,
+                 "  %-28s explained %.6f residual/noise %.4g p %.3g significant %d plausible %d vs first %.3g\n",
+                 e.effect.c_str(), e.explained_fraction, d.samples > 0 ? e.residual / d.samples : 0.0, e.p_value,
+                 e.significant, e.plausible, e.versus_first_p);
+  }
+  for (const auto& st : d.chain) {
+    std::fprintf(stderr, "  chain: %s -> %.4g x the noise (p %.3g)\n", st.effect.c_str(), st.noise_ratio, st.p_value);
+  }
+}
 
 void run_case(const std::string& name, const Options& o, Row& row) {
   const rig::RigModel nominal = test::noisy_trifilar();
@@ -108,6 +126,7 @@ void run_case(const std::string& name, const Options& o, Row& row) {
       ok = d.missing_effect && *d.missing_effect == name && d.chain.size() == 1;
     }
     row.named += ok;
+    if (o.verbose) print_run(name, seed, d);
     if (!ok) {
       std::string named;
       for (const auto& st : d.chain) named += (named.empty() ? "" : "+") + st.effect;

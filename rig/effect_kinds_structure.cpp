@@ -85,23 +85,39 @@ EffectFitting fit_rod_length_error(const FitContext& x) {
   return f;
 }
 
+// Every upper joint's error from the fitted ones: the first n - 1 as
+// fitted, the last minus their sum, so that the errors have zero mean.
+std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n) {
+  std::vector<Vec3> upper;
+  Vec3 sum = Vec3::Zero();
+  for (int i = 0; i + 1 < n; ++i) {
+    upper.push_back(p.segment<3>(3 * i));
+    sum += upper.back();
+  }
+  upper.push_back(-sum);
+  return upper;
+}
+
 // The upper joints only: a lower joint's error acts alike on the swing.
+// Their mean is not fitted: moving every joint alike moves the whole rig,
+// which neither the load cells nor the encoders see, and a fit along that
+// direction drifts to wherever its damping lets it (tens of millimetres,
+// beyond the plausible range, on two of five seeds of the acceptance case).
 EffectFitting fit_joint_position_error(const FitContext& x) {
   const int n = x.rods;
   EffectFitting f;
-  for (int i = 1; i <= n; ++i) {
+  for (int i = 1; i < n; ++i) {
     for (const char* a : {"x", "y", "z"}) {
       f.parameters.push_back({"upper" + std::to_string(i) + "_" + a, "m", 1e-3, -0.05, 0.05, false});
     }
   }
   f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
-    std::vector<Vec3> upper, lower(static_cast<size_t>(n), Vec3::Zero());
-    for (int i = 0; i < n; ++i) upper.push_back(p.segment<3>(3 * i));
-    return std::make_shared<JointPositionError>(upper, lower);
+    return std::make_shared<JointPositionError>(upper_errors(p, n),
+                                                std::vector<Vec3>(static_cast<size_t>(n), Vec3::Zero()));
   };
   f.write = [n](const Eigen::VectorXd& p) {
     std::vector<ParameterValue> upper;
-    for (int i = 0; i < n; ++i) upper.push_back(ParameterValue::of(segment(p, 3 * i, 3)));
+    for (const Vec3& u : upper_errors(p, n)) upper.push_back(ParameterValue::of(Eigen::VectorXd(u)));
     return ParameterValue::map().set("upper", ParameterValue::list(upper));
   };
   f.advice = "survey the joint centres and correct geometry.rods[*].upper and lower";
@@ -176,7 +192,9 @@ EffectKind joint_position_error() {
     return std::make_shared<JointPositionError>(e["upper"].defined() ? R::per_rod_vectors(e, "upper", x.rods) : zero,
                                                 e["lower"].defined() ? R::per_rod_vectors(e, "lower", x.rods) : zero);
   };
-  k.fitted_through = "every upper joint's position error (its vertical part is a length error)";
+  k.fitted_through =
+      "every upper joint's position error relative to their mean (their mean moves the whole rig, which no sensor "
+      "sees; the vertical part is a length error)";
   k.fit = fit_joint_position_error;
   return k;
 }
