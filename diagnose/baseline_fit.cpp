@@ -6,7 +6,8 @@
 namespace rigflex::diagnose {
 namespace {
 
-void progress(const DiagnosisOptions& options, const std::string& s) {
+// (Named apart from diagnosis.cpp's helpers: the unity build compiles both in one unit.)
+void report_stage(const DiagnosisOptions& options, const std::string& s) {
   if (options.progress) options.progress(s);
 }
 
@@ -24,7 +25,7 @@ DiagnosisOptions tight(const DiagnosisOptions& options) {
 FitOutcome fit_body(Fitter& fit, const ResponseModel& base, const FitPoint& start, const DiagnosisOptions& options,
                     std::vector<Eigen::MatrixXd>& Js, std::vector<Eigen::MatrixXd>& Jbody) {
   Js = fit.state_jacobians(base, start.states, start.r);
-  progress(options, "fitting the body's mass properties with the swing states");
+  report_stage(options, "fitting the body's mass properties with the swing states");
   Jbody = fit.parameter_jacobians(nullptr, start.theta, start.states, start.r);
   return fit_nonlinear(fit, nullptr, start, Js, Jbody, tight(options));
 }
@@ -47,7 +48,7 @@ Baseline fit_baseline(Fitter& fit, const rig::RigModel& model, const ResponseMod
   const int H = fit.histories();
   Baseline b;
   b.initial_states = states;
-  progress(options, "fitting the swing states to the whole records");
+  report_stage(options, "fitting the swing states to the whole records");
   Fitter plain(model, base, targets, BodyParameters{}, options.threads);
   const FitPoint first = evaluate(plain, nullptr, Eigen::VectorXd(), states);
   const std::vector<Eigen::MatrixXd> none(static_cast<size_t>(H));
