@@ -98,10 +98,11 @@ std::vector<FittedParameter> body_values(const Fitter& fit, const FitPoint& at, 
   return out;
 }
 
-ModelParameterFit fit_model_parameters(const rig::RigModel& model, const ResponseModel& base,
-                                       const std::vector<HistoryComparison>& histories,
-                                       const ModelParameterFitOptions& options) {
+std::optional<ModelParameterFit> fit_model_parameters(const ResponseModel& base,
+                                                      const std::vector<HistoryComparison>& histories,
+                                                      const ModelParameterFitOptions& options) {
   if (histories.empty()) throw std::invalid_argument("fit_model_parameters needs at least one history");
+  const rig::RigModel& model = base.system.model();
   DiagnosisOptions o;
   o.compare = options.compare;
   o.threads = options.threads;
@@ -113,10 +114,8 @@ ModelParameterFit fit_model_parameters(const rig::RigModel& model, const Respons
     targets.push_back(&h.target);
     states.push_back(h.fit.state);
   }
-  ModelParameterFit out;
-  out.model = model;
   Fitter fit(model, base, targets, body_parameters(model), options.threads);
-  if (fit.body_size() == 0) return out;
+  if (fit.body_size() == 0) return std::nullopt;
   // From compare's states (each fitted to its record's first seconds): the
   // body's fit refits them with it, so diagnose's first fit of the states
   // alone to the whole records would only cost time here.
@@ -125,6 +124,7 @@ ModelParameterFit fit_model_parameters(const rig::RigModel& model, const Respons
   const FitOutcome f = fit_body(fit, base, start, o, Js, Jbody);
   Diagnosis d;
   residual_statistics(f.at, targets, d);
+  ModelParameterFit out;
   out.noise_ratio_as_stated = start.data / d.samples;
   out.noise_ratio = d.noise_ratio;
   out.parameters = body_values(fit, f.at, f.schur_inverse, d);
@@ -134,7 +134,7 @@ ModelParameterFit fit_model_parameters(const rig::RigModel& model, const Respons
   // Far above the noise the offsets measure the model's missing physics, not
   // the body (diagnose's body_credible): the rig file's model is kept.
   out.credible = f.at.data <= (1.0 + o.noise_excess) * d.samples;
-  if (out.credible) out.model = model_with(model, fit.body(), f.at.theta);
+  out.model = out.credible ? model_with(model, fit.body(), f.at.theta) : model;
   return out;
 }
 

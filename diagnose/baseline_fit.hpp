@@ -7,6 +7,7 @@
 // refitted (fit_model_parameters).
 #include <Eigen/Core>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,7 @@ std::vector<FittedParameter> body_values(const Fitter& fit, const FitPoint& at, 
 struct ModelParameterFit {
   std::vector<FittedParameter> parameters;  // offsets from the rig file's values
   std::vector<FittedParameter> off;         // of those, beyond kOffSigmas of the stated std
-  double noise_ratio_as_stated = 0;         // residual / noise, the states alone refitted
+  double noise_ratio_as_stated = 0;         // residual / noise with compare's swing states, the rig file's values
   double noise_ratio = 0;                   // with the parameters refitted too
   bool credible = false;
   rig::RigModel model;
@@ -67,9 +68,10 @@ struct ModelParameterFitOptions {
   std::function<void(const std::string&)> progress;
 };
 
-// `histories`: compare's result per history of `base`, the model built from `model`.
-ModelParameterFit fit_model_parameters(const rig::RigModel& model, const ResponseModel& base,
-                                       const std::vector<HistoryComparison>& histories,
-                                       const ModelParameterFitOptions& options);
+// `histories`: compare's result per history of `base`. None where the rig
+// file states no uncertainty (body_parameters is empty): nothing to refit.
+std::optional<ModelParameterFit> fit_model_parameters(const ResponseModel& base,
+                                                      const std::vector<HistoryComparison>& histories,
+                                                      const ModelParameterFitOptions& options);
 
 }  // namespace rigflex::diagnose

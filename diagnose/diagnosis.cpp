@@ -428,13 +428,16 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
 
 }  // namespace
 
+ShownUnit shown_unit(const std::string& unit) {
+  if (unit == "m") return {1e3, " mm"};
+  return {1.0, unit == "1" ? "" : " " + unit};
+}
+
 std::string describe_off(const FittedParameter& p) {
-  const bool length = p.unit == "m";
-  const double k = length ? 1e3 : 1.0;
-  const std::string unit = length ? " mm" : p.unit == "1" ? "" : " " + p.unit;  // a gain's offset has none
+  const ShownUnit u = shown_unit(p.unit);
   char buf[200];
-  std::snprintf(buf, sizeof buf, "%s %+.4g%s (stated +-%.3g)", p.name.c_str(), k * p.value, unit.c_str(),
-                k * p.prior_std);
+  std::snprintf(buf, sizeof buf, "%s %+.4g%s (stated +-%.3g)", p.name.c_str(), u.scale * p.value, u.suffix.c_str(),
+                u.scale * p.prior_std);
   return buf;
 }
 

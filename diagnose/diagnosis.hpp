@@ -150,6 +150,14 @@ struct Diagnosis {
   std::string summary;  // one line: the verdict
 };
 
+// How a fitted parameter's value is shown: lengths in mm, a dimensionless
+// one (a gain) without a unit. `suffix` is " mm", " kg m^2" or "".
+struct ShownUnit {
+  double scale = 1;
+  std::string suffix;
+};
+ShownUnit shown_unit(const std::string& unit);
+
 // A model parameter that is off, in words: "cog.z +8.1 mm (stated +-2)".
 std::string describe_off(const FittedParameter& p);
 

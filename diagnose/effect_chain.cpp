@@ -50,33 +50,30 @@ EffectCandidate chained_candidate(const std::vector<const EffectCandidate*>& acc
       c.parameters.push_back(std::move(p));
     }
   }
-  // Each member's segment of theta, by position.
-  auto segments = [members](const Eigen::VectorXd& theta, auto&& each) {
+  // Each member with where its parameters start in theta and how many.
+  auto segments = [members](auto&& each) {
     Eigen::Index at = 0;
     for (const EffectCandidate* m : members) {
       const auto n = static_cast<Eigen::Index>(m->parameters.size());
-      each(*m, theta.segment(at, n));
+      each(*m, at, n);
       at += n;
     }
   };
   c.make = [segments](const Eigen::VectorXd& theta) -> std::shared_ptr<const rig::Effect> {
     std::vector<std::shared_ptr<const rig::Effect>> made;
-    segments(theta, [&](const EffectCandidate& m, const Eigen::VectorXd& x) {
-      if (auto e = m.make(x)) made.push_back(std::move(e));
+    segments([&](const EffectCandidate& m, Eigen::Index at, Eigen::Index n) {
+      if (auto e = m.make(theta.segment(at, n))) made.push_back(std::move(e));
     });
     if (made.empty()) return nullptr;
     if (made.size() == 1) return made.front();
     return std::make_shared<EffectGroup>(std::move(made));
   };
-  c.rig_block = [members](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
+  c.rig_block = [segments](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
     std::string block;
-    Eigen::Index at = 0;
-    for (const EffectCandidate* m : members) {
-      const auto n = static_cast<Eigen::Index>(m->parameters.size());
+    segments([&](const EffectCandidate& m, Eigen::Index at, Eigen::Index n) {
       const Eigen::VectorXd x = theta.segment(at, n);
-      if (m->make(x)) block += m->rig_block(x, std.size() > 0 ? Eigen::VectorXd(std.segment(at, n)) : std);
-      at += n;
-    }
+      if (m.make(x)) block += m.rig_block(x, std.size() > 0 ? Eigen::VectorXd(std.segment(at, n)) : std);
+    });
     return block;
   };
   return c;

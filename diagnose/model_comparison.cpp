@@ -1,6 +1,7 @@
 #include "diagnose/model_comparison.hpp"
 
 #include <cstdio>
+#include <memory>
 #include <mutex>
 
 #include "identify/identification_kinematics.hpp"
@@ -86,28 +87,22 @@ ModelComparison compare_model(const ResponseModel& m, const std::vector<const ri
                               const std::vector<std::string>& sources, const ModelComparisonOptions& options) {
   options.compare.validate();
   if (records.empty()) throw std::invalid_argument("compare needs at least one history");
-  const rig::RigModel& model = m.system.model();
-  if (!options.fit_model || body_parameters(model).size() == 0) {
-    ModelComparison c = compare_as_given(m, records, sources, options);
-    if (options.identify) identify_with(m, records, c);
-    return c;
+  ModelComparison c = compare_as_given(m, records, sources, options);
+  // The identification does not use the body; it does use refitted rods and effects.
+  std::unique_ptr<const ResponseModel> refitted;
+  if (options.fit_model) {
+    if (auto fit = fit_model_parameters(m, c.histories, {options.compare, options.threads, options.fit_progress})) {
+      if (fit->credible) {
+        if (options.fit_progress) options.fit_progress("comparing the model with its parameters refitted");
+        refitted = std::make_unique<const ResponseModel>(fit->model);
+        const ModelComparison::Nrmse as_stated{c.overall_nrmse, c.force_nrmse, c.angle_nrmse};
+        c = compare_as_given(*refitted, records, sources, options);
+        c.as_stated = as_stated;
+      }
+      c.model_fit = std::move(fit);
+    }
   }
-  ModelComparison stated = compare_as_given(m, records, sources, options);
-  ModelParameterFit fit =
-      fit_model_parameters(model, m, stated.histories, {options.compare, options.threads, options.fit_progress});
-  ModelComparison c;
-  if (fit.credible) {
-    if (options.fit_progress) options.fit_progress("comparing the model with its parameters refitted");
-    const ResponseModel refitted(fit.model);
-    c = compare_as_given(refitted, records, sources, options);
-    c.as_stated = ModelComparison::Nrmse{stated.overall_nrmse, stated.force_nrmse, stated.angle_nrmse};
-    // The identification does not use the body; it does use refitted rods and effects.
-    if (options.identify) identify_with(refitted, records, c);
-  } else {
-    c = std::move(stated);
-    if (options.identify) identify_with(m, records, c);
-  }
-  c.model_fit = std::move(fit);
+  if (options.identify) identify_with(refitted ? *refitted : m, records, c);
   return c;
 }
 

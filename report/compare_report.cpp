@@ -447,10 +447,9 @@ void model_fit_section(HtmlReport& r, const diagnose::ModelComparison& c) {
               ". The figures above are the refitted model's.");
   Table t{{"parameter", "offset from the rig file", "std", "stated std", "off"}, {}};
   for (const auto& p : f.parameters) {
-    const double k = p.unit == "m" ? 1e3 : 1.0;
-    const std::string unit = p.unit == "m" ? " mm" : p.unit == "1" ? "" : " " + p.unit;
-    t.rows.push_back({p.name, fmt("%+.4g", k * p.value) + unit, fmt("%.3g", k * p.std), fmt("%.3g", k * p.prior_std),
-                      p.off ? "OFF" : ""});
+    const diagnose::ShownUnit u = diagnose::shown_unit(p.unit);
+    t.rows.push_back({p.name, fmt("%+.4g", u.scale * p.value) + u.suffix, fmt("%.3g", u.scale * p.std),
+                      fmt("%.3g", u.scale * p.prior_std), p.off ? "OFF" : ""});
   }
   r.table(t, "Offsets beyond 3 stated standard deviations are marked OFF: correct them in the rig file");
 }
