@@ -1,5 +1,6 @@
 // bench_diagnosis_seeds [--seeds N] [--first S] [--cases a,b,...] [--threads N]
-//                       [--relinearizations N] [--refinements N] [--test-seed] [--verbose]:
+//                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
+//                       [--contender-gain G] [--effects a,b,...] [--test-seed] [--verbose]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
 // tests/support/diagnosis_cases.hpp, two controls (nothing hidden; air drag
@@ -19,8 +20,9 @@
 //   zG id    worst |flexible identification's CoG height - truth| with the
 //            effect added, mm (target <= 2)
 //   s        mean diagnose wall time
-// --relinearizations and --refinements set diagnose's fit budget (defaults:
-// DiagnosisOptions'), for studies of what more iterations buy. --test-seed
+// --relinearizations, --refinements, --relinearize-gain and --contender-gain set diagnose's
+// fit budget (defaults: DiagnosisOptions'), for studies of what more
+// iterations buy; --effects tests only those candidates. --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
 // gives it, to study the CI's case. --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise) and chain
@@ -70,6 +72,12 @@ Options parse(int argc, char** argv) {
       o.diagnosis.relinearizations = std::stoi(bench::option_value(argc, argv, i));
     } else if (a == "--refinements") {
       o.diagnosis.refinements = std::stoi(bench::option_value(argc, argv, i));
+    } else if (a == "--relinearize-gain") {
+      o.diagnosis.relinearize_gain = std::stod(bench::option_value(argc, argv, i));
+    } else if (a == "--contender-gain") {
+      o.diagnosis.contender_gain = std::stod(bench::option_value(argc, argv, i));
+    } else if (a == "--effects") {
+      o.diagnosis.effects = bench::split(bench::option_value(argc, argv, i));
     } else {
       throw std::invalid_argument("unknown option " + a);
     }
@@ -97,6 +105,13 @@ void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diag
   }
   for (const auto& st : d.chain) {
     std::fprintf(stderr, "  chain: %s -> %.4g x the noise (p %.3g)\n", st.effect.c_str(), st.noise_ratio, st.p_value);
+    for (const auto& p : st.parameters) {
+      std::fprintf(stderr, "    %s = %.4g +- %.2g %s\n", p.name.c_str(), p.value, p.std, p.unit.c_str());
+    }
+    for (const auto& p : st.body) {
+      std::fprintf(stderr, "    body %s = %+.4g +- %.2g %s (stated %.2g)\n", p.name.c_str(), p.value, p.std,
+                   p.unit.c_str(), p.prior_std);
+    }
   }
 }
 
@@ -140,10 +155,14 @@ void run_case(const std::string& name, const Options& o, Row& row) {
                                                                  : before.angle_nrmse / after.angle_nrmse;
     row.worst_fall = std::min(row.worst_fall, fall);
     row.worst_zg_fit = std::max(row.worst_zg_fit, std::abs(fitted.body.cog.z() - truth.body.cog.z()));
-    if (after.identified) {
-      row.worst_zg_id = std::max(row.worst_zg_id, std::abs(after.identified->properties.cog.z() - truth.body.cog.z()));
-    } else {
-      row.worst_zg_id = INFINITY;
+    const double zg_id =
+        after.identified ? std::abs(after.identified->properties.cog.z() - truth.body.cog.z()) : INFINITY;
+    row.worst_zg_id = std::max(row.worst_zg_id, zg_id);
+    if (o.verbose) {
+      double stated = 0;
+      for (const auto& p : d.body) stated = p.name == "cog_z" ? p.std : stated;
+      std::fprintf(stderr, "  zG: fit %+.3f mm (std %.3f), identified %+.3f mm off the truth; fall %.3g\n",
+                   1e3 * (fitted.body.cog.z() - truth.body.cog.z()), 1e3 * stated, 1e3 * zg_id, fall);
     }
   }
 }

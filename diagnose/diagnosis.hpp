@@ -5,7 +5,9 @@
 // history's swing state and the body's CoG and inertia (with the priors the
 // rig file states, diagnose/body_parameters.hpp), by Gauss-Newton on the
 // noise-weighted swing-band residuals (diagnose/joint_fit.hpp). The baseline
-// is the same fit without an effect. Each effect is then scored by the share
+// is the same fit without an effect; the fits of the significant effects
+// that come near the best one are taken on to convergence from several
+// starts (`contender_span`). Each effect is then scored by the share
 // of the objective it explains, re-simulated, not predicted by the
 // linearization. The body's fitted offsets beyond kOffSigmas of their
 // stated uncertainty are reported as "model parameter off".
@@ -48,6 +50,17 @@ struct DiagnosisOptions {
   // the ceiling's is fitted again by continuation over the record's length
   // (diagnosis.cpp), the better fit kept.
   double continuation_threshold = 0.05, continuation_ceiling = 0.9;
+  // Contenders: the significant effects whose residual lies within
+  // contender_span x the best one's. Before the ranking their fits are
+  // taken on - from where they stand, by continuation over the records'
+  // length, and from every other contender's body and swing states - while
+  // a linearization gains more than contender_gain, up to
+  // contender_relinearizations: two effects of similar reach (the fixed and
+  // the carrying frame) must be ranked by where their fits end, not by how
+  // far the first budget carried each (diagnosis.cpp).
+  double contender_span = 100.0;
+  double contender_gain = 0.01;
+  int contender_relinearizations = 12;
   double significance = 1e-6;      // p-value of the F test
   double min_explained = 0.10;     // share of the baseline residual
   double min_excess_share = 0.20;  // share of the residual above the noise

@@ -207,6 +207,15 @@ TEST(Diagnosis, OptionsAreChecked) {
   EXPECT_THROW(o.validate(), std::invalid_argument);
   o.relinearize_gain = 0.0;
   EXPECT_NO_THROW(o.validate());
+  o = {};
+  o.contender_span = 0.5;  // below 1 even the best fit would not be its own contender
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.contender_gain = 1.0;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.contender_relinearizations = -1;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
   EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
 }
 
