@@ -119,6 +119,13 @@ struct Reference {
   int held_parameters = 0;  // of the candidate's parameters, those the reference fitted already
 };
 
+// A fit taken on from `pt` with a new linearization there.
+FitOutcome refit_from(Fitter& fit, const EffectCandidate& c, const FitPoint& pt, const DiagnosisOptions& options) {
+  const ResponseModel m(fit.with_parameters(&c, pt.theta));
+  return fit_nonlinear(fit, &c, pt, fit.state_jacobians(m, pt.states, pt.r),
+                       fit.parameter_jacobians(&c, pt.theta, pt.states, pt.r), options);
+}
+
 CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c, const Baseline& b,
                             const DiagnosisOptions& options) {
   const int nb = fit.body_size(), n = fit.size(&c), p = n - nb;
@@ -151,10 +158,7 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
   try {
     Eigen::VectorXd theta = Eigen::VectorXd::Zero(n);
     theta.tail(p) = h.at.theta;
-    const FitPoint pt = evaluate(fit, &c, theta, h.at.states);
-    const ResponseModel m(fit.with_parameters(&c, theta));
-    FitOutcome s = fit_nonlinear(fit, &c, pt, fit.state_jacobians(m, pt.states, pt.r),
-                                 fit.parameter_jacobians(&c, theta, pt.states, pt.r), options);
+    FitOutcome s = refit_from(fit, c, evaluate(fit, &c, theta, h.at.states), options);
     s.first_predicted = o.first_predicted;
     s.steps += h.steps;
     if (better_fit(fit, s.at, o.at)) o = std::move(s);
@@ -223,13 +227,6 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
   // so that the effect, once added, is refitted like any stated value.
   if (c.make(theta)) ef.rig_block = c.rig_block(theta, standard_deviations(ef.parameters));
   return ef;
-}
-
-// A fit taken on from `pt` with a new linearization there.
-FitOutcome refit_from(Fitter& fit, const EffectCandidate& c, const FitPoint& pt, const DiagnosisOptions& options) {
-  const ResponseModel m(fit.with_parameters(&c, pt.theta));
-  return fit_nonlinear(fit, &c, pt, fit.state_jacobians(m, pt.states, pt.r),
-                       fit.parameter_jacobians(&c, pt.theta, pt.states, pt.r), options);
 }
 
 // The fit budget of a fit taken on to convergence (contender_gain, contender_relinearizations).
