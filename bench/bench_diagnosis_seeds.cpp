@@ -1,6 +1,7 @@
 // bench_diagnosis_seeds [--seeds N] [--first S] [--cases a,b,...] [--threads N]
 //                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
-//                       [--contender-gain G] [--effects a,b,...] [--test-seed] [--verbose]:
+//                       [--contender-gain G] [--contender-settled R] [--effects a,b,...] [--test-seed]
+//                       [--verbose] [--progress]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
 // tests/support/diagnosis_cases.hpp, two controls (nothing hidden; air drag
@@ -22,11 +23,13 @@
 //   s        mean diagnose wall time
 // --relinearizations, --refinements, --relinearize-gain and --contender-gain set diagnose's
 // fit budget (defaults: DiagnosisOptions'), for studies of what more
-// iterations buy; --effects tests only those candidates. --test-seed
+// iterations buy (--contender-settled: the residual / noise at which a
+// contender is left as it is; 0 takes every one on); --effects tests only those candidates. --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
 // gives it, to study the CI's case. --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise) and chain
-// on stderr.
+// on stderr; --progress prints diagnose's progress lines there, each with
+// the seconds since the run began (where a run's time goes).
 // Deterministic for the given seeds.
 #include <algorithm>
 #include <cmath>
@@ -48,7 +51,7 @@ struct Options {
   int seeds = 5, threads = 0;
   rigflex::diagnose::DiagnosisOptions diagnosis;
   std::uint64_t first = 1;
-  bool test_seed = false, verbose = false;
+  bool test_seed = false, verbose = false, progress = false;
   std::vector<std::string> cases;
 };
 
@@ -66,6 +69,10 @@ Options parse(int argc, char** argv) {
       o.test_seed = true;
     } else if (a == "--verbose") {
       o.verbose = true;
+    } else if (a == "--contender-settled") {
+      o.diagnosis.contender_settled = std::stod(bench::option_value(argc, argv, i));
+    } else if (a == "--progress") {
+      o.progress = true;
     } else if (a == "--threads") {
       o.threads = std::stoi(bench::option_value(argc, argv, i));
     } else if (a == "--relinearizations") {
@@ -126,6 +133,11 @@ void run_case(const std::string& name, const Options& o, Row& row) {
     diagnose::DiagnosisOptions dopt = o.diagnosis;
     dopt.threads = o.threads;
     const auto t0 = bench::clock_type::now();
+    if (o.progress) {
+      dopt.progress = [&](const std::string& s) {
+        std::fprintf(stderr, "%8.1f s  %s\n", bench::seconds_since(t0), s.c_str());
+      };
+    }
     const diagnose::Diagnosis d = diagnose::diagnose(start, test::record_pointers(data), {}, dopt);
     row.seconds += bench::seconds_since(t0);
     row.noise_ratio = std::max(row.noise_ratio, d.noise_ratio);

@@ -30,6 +30,7 @@ void DiagnosisOptions::validate() const {
   }
   if (!(contender_span >= 1)) throw std::invalid_argument("contender_span: must be >= 1");
   if (!(contender_gain >= 0 && contender_gain < 1)) throw std::invalid_argument("contender_gain: must lie in [0, 1)");
+  if (!(contender_settled >= 0)) throw std::invalid_argument("contender_settled: must be >= 0");
   if (contender_relinearizations < 0) throw std::invalid_argument("contender_relinearizations: must be >= 0");
   if (!(significance > 0 && significance < 1)) throw std::invalid_argument("significance: must lie in (0, 1)");
   if (!(min_explained >= 0 && min_explained < 1)) throw std::invalid_argument("min_explained: must lie in [0, 1)");
@@ -280,8 +281,12 @@ void converge_contenders(Fitter& fit, const std::vector<EffectCandidate>& candid
     }
   };
   const std::string of = " of " + std::to_string(contenders.size()) + ")";
+  // A fit at or below the noise expectation has nothing left that another
+  // basin could explain beyond the noise itself: it is not taken on.
+  auto settled = [&](size_t k) { return fits[k].joint.at.data <= options.contender_settled * d.samples; };
   for (size_t i = 0; i < contenders.size(); ++i) {
     const size_t k = contenders[i];
+    if (settled(k)) continue;
     progress(options, "converging " + candidates[k].effect + " (contender " + std::to_string(i + 1) + of);
     try {
       FitOutcome oc = fit_by_continuation(fit, &candidates[k], b.initial_states, deep);
@@ -299,6 +304,7 @@ void converge_contenders(Fitter& fit, const std::vector<EffectCandidate>& candid
     for (size_t k : contenders) ends.push_back(fits[k].joint.at);
     for (size_t i = 0; i < contenders.size(); ++i) {
       const size_t k = contenders[i];
+      if (settled(k)) continue;
       progress(options, "converging " + candidates[k].effect + " from the other contenders' bodies (contender " +
                             std::to_string(i + 1) + of);
       for (size_t j = 0; j < contenders.size(); ++j) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "diagnose/diagnosis.hpp"
@@ -216,6 +217,13 @@ TEST(Diagnosis, OptionsAreChecked) {
   o = {};
   o.contender_relinearizations = -1;
   EXPECT_THROW(o.validate(), std::invalid_argument);
+  o = {};
+  o.contender_settled = -0.5;
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.contender_settled = std::nan("");
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.contender_settled = 0.0;  // every contender taken on
+  EXPECT_NO_THROW(o.validate());
   EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
 }
 
