@@ -76,6 +76,7 @@ TEST(Cli, BadInputNamesFileLineAndKeyAndWritesNothing) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.out.find(model.string() + ":2: key 'colour'"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
+  fs::remove(model);
 }
 
 TEST(Cli, MechanismIsReportedWithItsFreeDofs) {
@@ -103,6 +104,7 @@ supports:
   for (const char* dof : {"node 3 UY", "node 4 UZ"}) EXPECT_NE(r.out.find(dof), std::string::npos) << dof << "\n" << r.out;
   EXPECT_EQ(r.out.find("node 2 "), std::string::npos) << r.out;  // the held member is not part of it
   EXPECT_FALSE(fs::exists(out));
+  fs::remove(model);
 }
 
 }  // namespace
