@@ -1,5 +1,5 @@
 // rigflex diagnose RIG.yaml DATA... --out DIR [--effects FILE]... [--only NAMES]
-//   [--threads N] [--max-effects N] [--quiet]:
+//   [--threads N] [--max-effects N] [--rank-all] [--quiet]:
 // which effect of the catalogue the model misses: each one the model lacks
 // fitted to the measurements with every history's swing state, ranked by
 // the share of the residual it explains; DIR/diagnosis.json, and per effect
@@ -32,7 +32,7 @@ struct DiagnoseArgs {
   std::string out;
   double fit_window = 0;
   int threads = 0, max_effects = 3;
-  bool quiet = false;
+  bool quiet = false, rank_all = false;
 };
 
 // The fitted effect as an effects file, saying how well it fits and what
@@ -83,6 +83,7 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   o.threads = a.threads;
   o.effects = a.only;
   o.max_effects = a.max_effects;
+  o.rank_at_noise = a.rank_all;
   if (!a.quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "diagnose: %s\n", s.c_str()); };
   try {
     o.validate();
@@ -97,12 +98,15 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   } catch (const rig::RecordError& e) {
     rethrow_record_error(mm, e);
   }
-  std::printf("%-28s %10s %12s %11s %9s %11s\n", "effect", "explained", "significant", "plausible", "p-value",
-              "vs first p");
+  if (!d.ranking.empty()) {
+    std::printf("%-28s %10s %12s %11s %9s %11s\n", "effect", "explained", "significant", "plausible", "p-value",
+                "vs first p");
+  }
   for (const auto& e : d.ranking) {
     std::printf("%-28s %9.4f%% %12s %11s %9.2g %11.2g\n", e.effect.c_str(), 100 * e.explained_fraction,
                 e.significant ? "yes" : "no", e.plausible ? "yes" : "no", e.p_value, e.versus_first_p);
   }
+  if (!d.ranking_note.empty()) std::printf("%s\n", d.ranking_note.c_str());
   std::printf("%s (baseline residual %.2f x the noise)\n", d.summary.c_str(), d.noise_ratio);
   print_body(d);
   if (d.missing_effect) {
@@ -160,6 +164,8 @@ void add_diagnose_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-effects", a->max_effects, "effects the chain accepts at most (1: the missing one alone)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--out", a->out, "output folder")->required();
+  cmd->add_flag("--rank-all", a->rank_all,
+                "fit and rank every candidate even where the model reaches the noise (none can be significant)");
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });
 }

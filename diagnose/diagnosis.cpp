@@ -595,6 +595,16 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   for (const auto& e : model.effects) d.present.push_back(e->name());
   const std::vector<EffectCandidate> candidates = candidates_to_test(base, d.present, options);
   std::map<std::string, FitPoint> points;  // of the ranking's fits: the look-alike test, the chain
+  if (!options.rank_at_noise && b.at.data <= (1.0 + options.noise_excess) * d.samples && !candidates.empty()) {
+    char note[200];
+    std::snprintf(note, sizeof note,
+                  "no candidate was fitted: the model as it is reaches the noise (%.3g x, the threshold %.3g x), "
+                  "where no effect can be significant; rank_at_noise (--rank-all) fits them",
+                  d.noise_ratio, 1.0 + options.noise_excess);
+    d.ranking_note = note;
+    conclude(d, options);
+    return d;
+  }
   const Reference ref{b.at.data, b.dof, 0};
   std::vector<CandidateFits> fits;
   for (size_t k = 0; k < candidates.size(); ++k) {

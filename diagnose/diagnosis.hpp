@@ -79,6 +79,12 @@ struct DiagnosisOptions {
   // Two significant effects are told apart when Vuong's test rejects "both
   // fit equally well" at this level (two-sided); otherwise both are named.
   double discrimination = 0.01;
+  // Fit the candidates even where the model as it is reaches the noise
+  // (the baseline within noise_excess of it). None can be significant there
+  // - the test needs a residual above the noise to explain - so by default
+  // they are not fitted: a clean record set is judged in the baseline's
+  // time, not the catalogue's (the clean control: 87 -> 3 s).
+  bool rank_at_noise = false;
   std::vector<std::string> effects;  // only these (empty: every effect the model lacks)
   // Effects the chain accepts at most (1: the missing effect alone).
   int max_effects = 3;
@@ -160,6 +166,7 @@ struct Diagnosis {
   // chain stopped because its model reached the noise (or max_effects).
   std::vector<EffectFit> after_chain;
   std::string chain_note;  // why the chain stopped above the noise, where it did without testing further
+  std::string ranking_note;  // why no candidate was fitted, where none was (DiagnosisOptions::rank_at_noise)
   std::vector<std::string> indistinguishable;  // significant effects the records cannot tell from it
   // The body's offsets fitted with the missing effect (or, with none, with
   // the model as it is), and those beyond what the rig file states; empty

@@ -263,6 +263,7 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   for (const auto& e : d.after_chain) after.push_back(effect_fit_json(e));
   j["tested_after_chain"] = after;
   j["chain_note"] = d.chain_note;
+  j["ranking_note"] = d.ranking_note;
   return j;
 }
 

@@ -340,7 +340,9 @@ std::string ranked_name(const diagnose::EffectFit& e) { return e.effect + (e.sig
 
 void ranking_section(HtmlReport& r, const diagnose::Diagnosis& d) {
   if (d.ranking.empty()) {
-    r.paragraph("No effect was tested (the model has every effect of the catalogue, or none was selected).");
+    r.paragraph(d.ranking_note.empty()
+                    ? "No effect was tested (the model has every effect of the catalogue, or none was selected)."
+                    : "No effect was tested: " + d.ranking_note + ".");
     return;
   }
   r.heading("Effects ranked by the share of the residual they explain");

@@ -168,6 +168,19 @@ TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   EXPECT_EQ(j["model_parameters_off"], nlohmann::json::array({"rods.stiffness"}));
   EXPECT_EQ(j["body"]["rods.stiffness"]["unit"], "%");
   EXPECT_NEAR(j["body"]["rods.stiffness"]["offset"].get<double>(), -50.0, 1.0);
+  // Refitted, the model reaches the noise: no candidate is fitted, and the
+  // terminal and the JSON say why; --rank-all fits it anyway.
+  EXPECT_TRUE(j["ranking"].empty()) << j["ranking"];
+  EXPECT_NE(r.out.find("no candidate was fitted"), std::string::npos) << r.out;
+  EXPECT_NE(j["ranking_note"].get<std::string>().find("reaches the noise"), std::string::npos);
+  const CliRun all = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
+                         " --only rod_compliance --rank-all --quiet --out " + (dir / "all").string());
+  ASSERT_EQ(all.code, 0) << all.out;
+  const auto ja = read_json(dir / "all" / "diagnosis.json");
+  ASSERT_EQ(ja["ranking"].size(), 1u) << ja["ranking"];
+  EXPECT_EQ(ja["ranking"][0]["effect"], "rod_compliance");
+  EXPECT_EQ(ja["ranking"][0]["significant"], false);
+  EXPECT_EQ(ja["ranking_note"], "");
   // Rigid rods have no stiffness to be unsure of: file, line and key.
   std::ofstream(dir / "bad.yaml") << kCompareRig << "rods: {damping: 10, uncertainty: {stiffness: 0.1}}\n";
   const CliRun bad = run("diagnose " + (dir / "bad.yaml").string() + " " + (dir / "data" / "set1").string() +

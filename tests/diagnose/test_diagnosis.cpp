@@ -99,13 +99,13 @@ TEST(EffectCandidates, EveryEffectBuildsAtItsProbe) {
 
 // diagnose of `start` on two records of 8 s simulated from `truth`, the candidates limited to `effects`.
 diagnose::Diagnosis diagnose_two_short_records(const rig::RigModel& start, const rig::RigModel& truth,
-                                               std::uint64_t seed, std::vector<std::string> effects) {
+                                               std::uint64_t seed, std::vector<std::string> effects,
+                                               diagnose::DiagnosisOptions o = {}) {
   rig::MeasurementOptions mo;
   mo.histories = 2;
   mo.duration_s = 8.0;
   mo.seed = seed;
   const auto data = rig::simulate_measurement(rig::RigSystem(truth), mo).front();
-  diagnose::DiagnosisOptions o;
   o.effects = std::move(effects);
   return diagnose::diagnose(start, {&data[0], &data[1]}, {"a", "b"}, o);
 }
@@ -186,6 +186,27 @@ TEST(Diagnosis, ReportsAnEffectInTheModelOffWhereItsUncertaintyIsStated) {
     EXPECT_EQ(fitted->off, i < 2) << name << " " << fitted->value;
   }
   EXPECT_NE(d.summary.find("model parameter off: effects.load_cell_gain.gain[0]"), std::string::npos) << d.summary;
+}
+
+// The model as the records were simulated: it reaches the noise, where no
+// effect can be significant, so no candidate is fitted and the report says
+// why - unless asked, when the candidate is fitted and found not significant.
+TEST(Diagnosis, AModelAtTheNoiseFitsNoCandidateUnlessAsked) {
+  const rig::RigModel model = trifilar();
+  const diagnose::Diagnosis d = diagnose_two_short_records(model, model, 3, {"rod_length_error"});
+  EXPECT_FALSE(d.missing_effect.has_value()) << d.summary;
+  EXPECT_LE(d.noise_ratio, 1.0 + diagnose::DiagnosisOptions{}.noise_excess);
+  EXPECT_TRUE(d.ranking.empty());
+  EXPECT_NE(d.ranking_note.find("reaches the noise"), std::string::npos) << d.ranking_note;
+  EXPECT_NE(d.summary.find("matches the measurements to the noise"), std::string::npos) << d.summary;
+  diagnose::DiagnosisOptions all;
+  all.rank_at_noise = true;
+  const diagnose::Diagnosis r = diagnose_two_short_records(model, model, 3, {"rod_length_error"}, all);
+  ASSERT_EQ(r.ranking.size(), 1u);
+  EXPECT_EQ(r.ranking[0].effect, "rod_length_error");
+  EXPECT_FALSE(r.ranking[0].significant);
+  EXPECT_TRUE(r.ranking_note.empty());
+  EXPECT_FALSE(r.missing_effect.has_value()) << r.summary;
 }
 
 TEST(Diagnosis, OptionsAreChecked) {
