@@ -88,12 +88,6 @@ std::vector<EffectCandidate> candidates_to_test(const ResponseModel& base, const
                         std::find(options.effects.begin(), options.effects.end(), c.effect) != options.effects.end();
     if (!has && wanted) candidates.push_back(std::move(c));
   }
-  // The frames' stand-ins last: they add the joints' coordinates and a
-  // deformation mode the integrator resolves, and a fit of one takes 3-10x
-  // the time of another candidate's. Fitted after the others, they can be
-  // left at their first linearization where one of those already reaches
-  // the noise (fit_candidate's `distant`).
-  std::stable_partition(candidates.begin(), candidates.end(), [](const auto& c) { return !c.stand_in; });
   return candidates;
 }
 
@@ -133,16 +127,8 @@ FitOutcome refit_from(Fitter& fit, const EffectCandidate& c, const FitPoint& pt,
                        fit.parameter_jacobians(&c, pt.theta, pt.states, pt.r), options);
 }
 
-// `distant`: a residual above which the candidate cannot become a
-// contender - contender_span x that of a significant candidate fitted
-// before it that already reaches the noise (INFINITY: none does). Its
-// direct fit then first takes one linearization; a fit that stays above
-// `distant` there is taken no further (no new linearization, continuation
-// or staged fit): the records are explained to the noise by another
-// effect, and this one's ranking, far below, would not change. Its values
-// still come from the fit with the body held.
 CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c, const Baseline& b,
-                            const DiagnosisOptions& options, double distant) {
+                            const DiagnosisOptions& options) {
   const int nb = fit.body_size(), n = fit.size(&c), p = n - nb;
   FitPoint from = b.start;
   from.theta = Eigen::VectorXd::Zero(n);
@@ -152,30 +138,10 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
     Jt[j].resize(Je[j].rows(), n);
     Jt[j] << b.Jbody[j], Je[j];
   }
-  DiagnosisOptions first = options;
-  if (std::isfinite(distant)) first.relinearizations = 0;
-  FitOutcome o = fit_nonlinear(fit, &c, from, b.Js, Jt, first);
-  const bool far = o.at.data > distant;
-  if (far) {
-    o.note = "taken no further than its first linearization: another effect explains the records to the noise";
-  } else if (first.relinearizations < options.relinearizations && options.relinearizations > 0 &&
-             o.at.cost < (1.0 - options.relinearize_gain) * from.data) {
-    // Within reach after all: on as fit_nonlinear would have gone.
-    try {
-      DiagnosisOptions rest = options;
-      rest.relinearizations = options.relinearizations - 1;
-      FitOutcome more = refit_from(fit, c, o.at, rest);
-      more.first_predicted = o.first_predicted;
-      more.steps += o.steps;
-      more.linearizations += o.linearizations;
-      o = std::move(more);
-    } catch (const std::exception& x) {
-      o.note = std::string("a linearization failed: ") + x.what();
-    }
-  }
+  FitOutcome o = fit_nonlinear(fit, &c, from, b.Js, Jt, options);
   const double rss = b.at.data;
   const double direct = rss > 0 ? (rss - o.at.data) / rss : 0.0;
-  if (!far && direct >= options.continuation_threshold && direct < options.continuation_ceiling) {
+  if (direct >= options.continuation_threshold && direct < options.continuation_ceiling) {
     try {
       FitOutcome oc = fit_by_continuation(fit, &c, b.initial_states, options);
       oc.first_predicted = o.first_predicted;
@@ -189,8 +155,7 @@ CandidateFits fit_candidate(Fitter& fit, Fitter& held, const EffectCandidate& c,
   FitPoint held_start = b.start;
   held_start.theta = Eigen::VectorXd::Zero(p);
   const FitOutcome h = fit_nonlinear(held, &c, held_start, b.Js, Je, options);
-  // Far behind, or the direct fit already below the held one: no staged fit.
-  if (far || !(h.at.data < o.at.data + fit.prior_cost(o.at.theta))) return {o, h};
+  if (!(h.at.data < o.at.data + fit.prior_cost(o.at.theta))) return {o, h};  // the direct fit is already below it
   try {
     Eigen::VectorXd theta = Eigen::VectorXd::Zero(n);
     theta.tail(p) = h.at.theta;
@@ -642,15 +607,12 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   }
   const Reference ref{b.at.data, b.dof, 0};
   std::vector<CandidateFits> fits;
-  double settled = INFINITY;  // the lowest residual of a significant candidate at the noise
   for (size_t k = 0; k < candidates.size(); ++k) {
     const EffectCandidate& c = candidates[k];
     progress(options,
              "fitting " + c.effect + " (" + std::to_string(k + 1) + " of " + std::to_string(candidates.size()) + ")");
-    fits.push_back(fit_candidate(fit, held, c, b, options, options.contender_span * settled));
+    fits.push_back(fit_candidate(fit, held, c, b, options));
     d.ranking.push_back(score(fit, c, fits.back(), ref, d, options));
-    const double r = fits.back().joint.at.data;
-    if (d.ranking.back().significant && r <= options.contender_settled * d.samples) settled = std::min(settled, r);
   }
   converge_contenders(fit, candidates, fits, b, ref, options, d);
   for (size_t k = 0; k < candidates.size(); ++k) points[candidates[k].effect] = std::move(fits[k].joint.at);

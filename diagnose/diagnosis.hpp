@@ -64,10 +64,7 @@ struct DiagnosisOptions {
   // A contender whose fit's residual is at most this x the noise
   // expectation is converged already (the model's own records give
   // 0.92-0.95 x): the data have nothing left for it to explain. 0: every
-  // contender is taken on. Once a significant candidate is settled so, a
-  // candidate fitted after it (the frames' stand-ins come last) that stays
-  // above contender_span x its residual after one linearization is taken
-  // no further: it cannot become a contender.
+  // contender is taken on.
   double contender_settled = 1.0;
   double significance = 1e-6;      // p-value of the F test
   double min_explained = 0.10;     // share of the baseline residual

@@ -130,36 +130,6 @@ TEST(Diagnosis, FindsALoadCellCalibration) {
   }
 }
 
-// The frames' stand-ins are fitted after the other candidates; where one of
-// those already explains the records to the noise, a frame that stays far
-// above it after one linearization is taken no further, and says so - unless
-// contender_settled is 0, when every candidate gets its whole fit. The
-// verdict is the same either way.
-TEST(Diagnosis, AFrameFarBehindAnEffectAtTheNoiseIsTakenNoFurther) {
-  const rig::RigModel start = trifilar();
-  rig::RigModel truth = start;
-  truth.effects.push_back(
-      std::make_shared<rig::LoadCellGain>(std::vector<double>{1.01, 0.99, 1.0}, std::vector<double>{5.0, 0.0, -5.0}));
-  const std::vector<std::string> only{"carrying_frame_flexibility", "load_cell_gain"};
-  const auto note_of = [](const diagnose::Diagnosis& d, const std::string& effect) {
-    for (const auto& e : d.ranking) {
-      if (e.effect == effect) return e.note;
-    }
-    return std::string("(not ranked)");
-  };
-  const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 5, only);
-  ASSERT_TRUE(d.missing_effect) << d.summary;
-  EXPECT_EQ(*d.missing_effect, "load_cell_gain");
-  EXPECT_NE(note_of(d, "carrying_frame_flexibility").find("taken no further"), std::string::npos)
-      << note_of(d, "carrying_frame_flexibility");
-  diagnose::DiagnosisOptions whole;
-  whole.contender_settled = 0;
-  const diagnose::Diagnosis w = diagnose_two_short_records(start, truth, 5, only, whole);
-  ASSERT_TRUE(w.missing_effect) << w.summary;
-  EXPECT_EQ(*w.missing_effect, "load_cell_gain");
-  EXPECT_EQ(note_of(w, "carrying_frame_flexibility").find("taken no further"), std::string::npos);
-}
-
 // The rods' stiffness as the rig file has it, with the uncertainty it
 // states (10 %), while the rods are twice as compliant: the stiffness is
 // refitted with the body, lands on the truth, and is reported as a model
