@@ -591,11 +591,12 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   Fitter fit(model, base, targets, body_parameters(model), options.threads);
   Fitter held(model, base, targets, BodyParameters{}, options.threads);
   const Baseline b = fit_baseline(fit, model, base, targets, states, options, d);
-  if (b.at.data <= (1.0 + options.noise_excess) * d.samples) d.body = body_values(fit, b.at, b.schur_inverse, d);
+  // Within the gate every significance test applies (score): no effect can be significant.
+  const bool at_noise = b.at.data <= (1.0 + options.noise_excess) * d.samples;
+  if (at_noise) d.body = body_values(fit, b.at, b.schur_inverse, d);
   for (const auto& e : model.effects) d.present.push_back(e->name());
   const std::vector<EffectCandidate> candidates = candidates_to_test(base, d.present, options);
-  std::map<std::string, FitPoint> points;  // of the ranking's fits: the look-alike test, the chain
-  if (!options.rank_at_noise && b.at.data <= (1.0 + options.noise_excess) * d.samples && !candidates.empty()) {
+  if (at_noise && !options.rank_at_noise && !candidates.empty()) {
     char note[200];
     std::snprintf(note, sizeof note,
                   "no candidate was fitted: the model as it is reaches the noise (%.3g x, the threshold %.3g x), "
@@ -605,6 +606,7 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     conclude(d, options);
     return d;
   }
+  std::map<std::string, FitPoint> points;  // of the ranking's fits: the look-alike test, the chain
   const Reference ref{b.at.data, b.dof, 0};
   std::vector<CandidateFits> fits;
   for (size_t k = 0; k < candidates.size(); ++k) {
