@@ -137,7 +137,7 @@ void add_check_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", a->out, "folder for check.json and the rig's mode shapes");
   cmd->add_option("--predict-sets", a->predict_sets,
                   "virtual measurement sets for the predicted identification error (0: skip)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd->add_option("--predict-histories", a->predict_histories, "histories per virtual set")->check(positive());
   cmd->add_option("--predict-duration", a->predict_duration, "record length of a virtual history [s]")
       ->check(positive());

@@ -16,17 +16,31 @@ void add_sweep_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
 void add_diagnose_command(CLI::App& app, int& exit_code);
 
-// A value > 0, refused with a plain message ("--histories: must be positive,
-// got 0"): CLI11's PositiveNumber names its range up to 1.8e308.
-inline CLI::Validator positive() {
+// A number accepted when `ok(value)`, else refused with a plain message
+// ("--histories: must be positive, got 0"): CLI11's PositiveNumber names its
+// range up to 1.8e308. `whole`: an integer is expected.
+template <class Ok>
+CLI::Validator number_check(Ok ok, bool whole, std::string refusal, std::string label) {
   return CLI::Validator(
-      [](std::string& s) -> std::string {
+      [ok, whole, refusal](std::string& s) -> std::string {
         char* end = nullptr;
-        const double v = std::strtod(s.c_str(), &end);
-        if (end == s.c_str() || *end != '\0') return "expected a number, got '" + s + "'";
-        return v > 0 ? std::string() : "must be positive, got " + s;
+        const double v = whole ? static_cast<double>(std::strtol(s.c_str(), &end, 10)) : std::strtod(s.c_str(), &end);
+        if (end == s.c_str() || *end != '\0')
+          return (whole ? "expected a whole number, got '" : "expected a number, got '") + s + "'";
+        return ok(v) ? std::string() : refusal + ", got " + s;
       },
-      "> 0");
+      std::move(label));
+}
+
+inline CLI::Validator positive() {
+  return number_check([](double v) { return v > 0; }, false, "must be positive", "> 0");
+}
+inline CLI::Validator non_negative() {
+  return number_check([](double v) { return v >= 0; }, false, "must not be negative", ">= 0");
+}
+// A thread count: 0 (all cores) to 1024.
+inline CLI::Validator thread_count() {
+  return number_check([](double v) { return v >= 0 && v <= 1024; }, true, "expected 0 (all cores) to 1024", "0-1024");
 }
 
 }  // namespace rigflex::app

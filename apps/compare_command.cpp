@@ -195,7 +195,7 @@ void add_compare_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--study", a->study, "study folder: keeps every model version's errors (study.json)");
   cmd->add_option("--fit-window", a->fit_window, "seconds at the start of each record the swing state is fitted to")
       ->check(positive());
-  cmd->add_option("--threads", a->threads, "histories compared in parallel (0: all cores)");
+  cmd->add_option("--threads", a->threads, "histories compared in parallel (0: all cores)")->check(thread_count());
   cmd->add_option("--out", a->out, "output folder")->required();
   cmd->add_flag("--hold-body", a->hold_body,
                 "compare the body (and every parameter with a stated uncertainty) as the rig file gives it, not "

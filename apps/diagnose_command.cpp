@@ -160,9 +160,9 @@ void add_diagnose_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--only", a->only, "test only these effects (comma separated)")->delimiter(',');
   cmd->add_option("--fit-window", a->fit_window, "seconds at the start of each record the swing state is first fitted to")
       ->check(positive());
-  cmd->add_option("--threads", a->threads, "threads (0: all cores)");
+  cmd->add_option("--threads", a->threads, "threads (0: all cores)")->check(thread_count());
   cmd->add_option("--max-effects", a->max_effects, "effects the chain accepts at most (1: the missing one alone)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive());
   cmd->add_option("--out", a->out, "output folder")->required();
   cmd->add_flag("--rank-all", a->rank_all,
                 "fit and rank every candidate even where the model reaches the noise (none can be significant)");

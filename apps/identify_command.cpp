@@ -182,7 +182,7 @@ void add_identify_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--mass", a->mass, "mass from static weighing [kg] (default: the rig file's body)")->check(positive());
   cmd->add_option("--window", a->window, "Savitzky-Golay window [s]")->check(positive());
   cmd->add_option("--degree", a->degree, "Savitzky-Golay polynomial degree")->check(positive());
-  cmd->add_option("--threads", a->threads, "sets identified in parallel (0: all cores)");
+  cmd->add_option("--threads", a->threads, "sets identified in parallel (0: all cores)")->check(thread_count());
   cmd->add_option("--out", a->out, "output folder for identification.json")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });

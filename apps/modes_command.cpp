@@ -1,5 +1,6 @@
 // rigflex modes MODEL.yaml [--count N] [--out DIR] [--block B]: natural frequencies,
 // modal masses, effective mass fractions; modes.json and ParaView files.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -7,9 +8,10 @@
 #include "apps/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/model_reader.hpp"
-#include "report/modes_json.hpp"
 #include "io/vtk_modes.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "reduction/zero_frequency_modes.hpp"
+#include "report/modes_json.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -21,7 +23,43 @@ struct ModesArgs {
   std::optional<double> shift_hz;
   int block = 0;
   bool quiet = false;
+  bool allow_mechanism = false;
 };
+
+// The elements that hold any of `nodes`, for naming the part a mechanism is in.
+std::vector<std::string> elements_at(const fe::Model& model, const std::vector<fe::NodeId>& nodes) {
+  std::vector<std::string> out;
+  auto has = [&](fe::NodeId id) { return std::find(nodes.begin(), nodes.end(), id) != nodes.end(); };
+  for (const fe::BeamElement& b : model.beams) {
+    if (has(b.nodes[0]) || has(b.nodes[1])) out.push_back("beam " + b.id);
+  }
+  for (const fe::ShellElement& s : model.shells) {
+    if (std::any_of(s.nodes.begin(), s.nodes.end(), has)) out.push_back("shell " + s.id);
+  }
+  return out;
+}
+
+std::string describe(const reduction::ZeroFrequencyMode& z, const fe::Model& model, const fe::DofMap& dofs,
+                     const Eigen::MatrixXd& vectors) {
+  std::string s = "mode " + std::to_string(z.mode + 1) + " moves ";
+  for (size_t i = 0; i < z.largest.size(); ++i) s += (i ? ", " : "") + z.largest[i];
+  if (z.moving > static_cast<Eigen::Index>(z.largest.size())) {
+    s += " and " + std::to_string(z.moving - static_cast<Eigen::Index>(z.largest.size())) + " more DOFs";
+  }
+  // The nodes of its largest motions, and the elements they belong to.
+  std::vector<fe::NodeId> nodes;
+  const Eigen::VectorXd amp = vectors.col(z.mode).cwiseAbs();
+  for (Eigen::Index i = 0; i < amp.size(); ++i) {
+    if (amp(i) > 0.1 * amp.maxCoeff()) nodes.push_back(dofs.node[static_cast<size_t>(i)]);
+  }
+  const std::vector<std::string> parts = elements_at(model, nodes);
+  if (!parts.empty()) {
+    s += "; in ";
+    for (size_t i = 0; i < std::min<size_t>(parts.size(), 6); ++i) s += (i ? ", " : "") + parts[i];
+    if (parts.size() > 6) s += " and " + std::to_string(parts.size() - 6) + " more elements";
+  }
+  return s;
+}
 
 void print_table(const reduction::ModalAnalysis& a) {
   const auto& s = a.summary;
@@ -57,14 +95,37 @@ int run(const ModesArgs& args) {
                  args.model.c_str());
     for (const auto& d : a.mechanism) std::fprintf(stderr, "  %s\n", d.c_str());
     std::fprintf(stderr, "add supports, springs or mass to these DOFs\n");
-    return 1;
+    return 2;
   }
   if (a.result.converged_count > 0) print_table(a);
+  const std::vector<reduction::ZeroFrequencyMode> zero = reduction::zero_frequency_modes(m.model, a);
+  const bool supported = reduction::is_supported(m.model);
+  if (!zero.empty() && supported && !args.allow_mechanism) {
+    std::fprintf(stderr,
+                 "rigflex: error: %s: the model is supported but %zu mode(s) have zero frequency: a mechanism, "
+                 "a part that moves without straining anything:\n",
+                 args.model.c_str(), zero.size());
+    for (const auto& z : zero) {
+      std::fprintf(stderr, "  %s\n", describe(z, m.model, a.system.dofs, a.result.vectors).c_str());
+    }
+    std::fprintf(stderr,
+                 "add supports, connections or stiffness to these DOFs, or pass --allow-mechanism to keep "
+                 "them; nothing written\n");
+    return 2;
+  }
+  if (!zero.empty()) {
+    std::printf("modes 1-%zu have zero frequency: %s\n", zero.size(),
+                supported ? "a mechanism, kept (--allow-mechanism)" : "rigid-body motions of the free model");
+  }
   if (!a.result.converged) std::fprintf(stderr, "rigflex: warning: %s\n", a.result.message.c_str());
   if (!args.out.empty() && a.result.converged_count > 0) {
     const std::filesystem::path dir(args.out);
     io::FileBatch batch;
-    batch.add_text(dir / "modes.json", report::modes_json(m.name, a).dump(2) + "\n");
+    nlohmann::json j = report::modes_json(m.name, a);
+    j["supported"] = supported;
+    j["zero_frequency_modes"] = nlohmann::json::array();
+    for (const auto& z : zero) j["zero_frequency_modes"].push_back(z.mode + 1);
+    batch.add_text(dir / "modes.json", j.dump(2) + "\n");
     io::add_mode_shape_files(batch, dir, m.model, a.system.dofs, a.summary.frequencies_hz, a.result.vectors);
     batch.commit();
     std::printf("wrote %s/modes.json, modes.pvd and %ld mode_NNN.vtu\n", args.out.c_str(),
@@ -79,13 +140,15 @@ void add_modes_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a model");
   auto args = std::make_shared<ModesArgs>();
   cmd->add_option("model", args->model, "model YAML file")->required();
-  cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(CLI::PositiveNumber);
+  cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(positive());
   cmd->add_option("--out", args->out, "folder for modes.json, modes.pvd and mode_NNN.vtu");
   cmd->add_option("--shift-hz", args->shift_hz, "spectral shift as a frequency: sigma = -(2 pi f)^2");
   cmd->add_option("--block", args->block,
                   "Lanczos block size; 0 (default): chosen from the fill of the factor, see docs/eigen-solver.md")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
+  cmd->add_flag("--allow-mechanism", args->allow_mechanism,
+                "keep zero-frequency modes of a supported model (otherwise an error, exit 2)");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

@@ -94,6 +94,7 @@ int run(const ReduceArgs& args) {
     if (!e.free_dofs.empty()) {
       std::fprintf(stderr, "free DOFs:\n");
       for (const auto& d : e.free_dofs) std::fprintf(stderr, "  %s\n", d.c_str());
+      return 2;  // a mechanism: the model as given is wrong
     }
     return 1;
   }
@@ -113,8 +114,8 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--interface", a->interface_set, "node set of the joint centres (the retained nodes)")->required();
   cmd->add_option("--method", a->method, "guyan | craig-bampton")
       ->check(CLI::IsMember({"guyan", "craig-bampton"}));
-  auto* modes = cmd->add_option("--modes", a->modes, "Craig-Bampton: number of fixed-interface modes")
-                    ->check(CLI::NonNegativeNumber);
+  auto* modes =
+      cmd->add_option("--modes", a->modes, "Craig-Bampton: number of fixed-interface modes")->check(non_negative());
   cmd->add_option("--cutoff", a->cutoff_hz, "Craig-Bampton: keep the fixed-interface modes below this frequency [Hz]")
       ->excludes(modes);
   cmd->add_option("--dofs", a->dofs, "retained DOFs per interface node: translations | all")
@@ -125,8 +126,7 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--reference-node", a->reference_node, "node held for a reference-node reduction");
   cmd->add_option("--zeta", a->zeta, "Rayleigh damping ratio at the two --zeta-modes");
   cmd->add_option("--zeta-modes", a->zeta_modes, "two elastic modes of the full model, 1-based")->delimiter(',');
-  cmd->add_option("--check-modes", a->check_modes, "elastic modes of the full model to compare")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--check-modes", a->check_modes, "elastic modes of the full model to compare")->check(positive());
   cmd->add_option("--out", a->out, "folder for reduced.json, reduced.mat and the .mtx files")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });

@@ -91,7 +91,7 @@ void add_sweep_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--histories", a->histories, "histories per set")->check(positive());
   cmd->add_option("--duration", a->duration, "record length [s]")->check(positive());
   cmd->add_option("--seed", a->seed, "seed of releases and noise");
-  cmd->add_option("--threads", a->threads, "points in parallel (0: all cores)");
+  cmd->add_option("--threads", a->threads, "points in parallel (0: all cores)")->check(thread_count());
   cmd->add_option("--out", a->out, "output folder")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->callback([a, &exit_code] { exit_code = run(*a); });

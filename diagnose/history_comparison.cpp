@@ -4,12 +4,13 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <stdexcept>
 
+#include "identify/identification_kinematics.hpp"
 #include "rig/encoder.hpp"
 #include "rig/equilibrium.hpp"
-#include "identify/identification_kinematics.hpp"
 #include "rig/pose_fit.hpp"
 
 namespace rigflex::diagnose {
@@ -101,8 +102,15 @@ BandTarget band_target(const ResponseModel& m, const rig::Record& record) {
   b.band = swing_band(b.record.step_s, highest_swing_hz(m));
   b.at = band_samples(b.band, b.record.t.size());
   if (b.at.size() < 8) {
-    throw std::invalid_argument("the record is too short for the swing band (" +
-                                std::to_string(b.record.t(b.record.t.size() - 1) - b.record.t(0)) + " s)");
+    // The band filter spans half_width samples on each side of every
+    // compared one, and the comparison needs eight of them.
+    const double needed = (2.0 * b.band.half_width() + 8.0 * b.band.decimation) * b.record.step_s;
+    char msg[200];
+    std::snprintf(msg, sizeof msg,
+                  "the record is too short for the swing band: %.4g s, where the band's filter needs at least "
+                  "%.3g s",
+                  b.record.t(b.record.t.size() - 1) - b.record.t(0), needed);
+    throw std::invalid_argument(msg);
   }
   b.measured = band_filter(b.band, b.record.channels, b.at);
   b.weight = (b.sigma * b.band.noise_gain()).cwiseInverse();
@@ -284,7 +292,13 @@ HistoryComparison compare_history(const ResponseModel& m, const rig::Record& rec
   check_record_fits_rig(m, record.t, channels_of(record));
   HistoryComparison h;
   h.source = source;
-  h.target = band_target(m, record);
+  try {
+    h.target = band_target(m, record);
+  } catch (const rig::RecordError&) {
+    throw;  // names its sample and channel; the command maps it to the file
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(source.empty() ? std::string(e.what()) : source + ": " + e.what());
+  }
   // The encoders' guess may be a state the rig cannot hold (a record that
   // fits the rig badly): then from rest, else the record is named.
   try {

@@ -5,10 +5,11 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "rig/equilibrium.hpp"
 #include "identify/identification_rig.hpp"
+#include "rig/equilibrium.hpp"
 #include "rig/linearization.hpp"
 #include "rig/parallel_for.hpp"
+#include "rig/simulation.hpp"
 
 namespace rigflex::identify {
 
@@ -32,6 +33,13 @@ void SweepOptions::validate() const {
   mass.validate("--mass-scale");
   stiffness.validate("--stiffness-scale");
   study.validate();
+  // Every point simulates a whole measurement: bounded like one.
+  const double records = static_cast<double>(mass.count + stiffness.count) * study.sets * study.histories;
+  if (records > rig::kMaxHistories) {
+    throw std::invalid_argument("the sweep would simulate " + std::to_string(static_cast<long long>(records)) +
+                                " records (points x sets x histories); at most " +
+                                std::to_string(static_cast<long>(rig::kMaxHistories)) + " in one run");
+  }
 }
 
 const char* to_string(SweepKind k) { return k == SweepKind::mass ? "mass" : "stiffness"; }

@@ -37,6 +37,11 @@ std::optional<VirtualOutcome> identify_sets(const IdentificationRig* rig,
 void VirtualStudyOptions::validate() const {
   if (sets < 1 || histories < 1) throw std::invalid_argument("virtual identification: sets and histories must be >= 1");
   if (!(duration_s > 0)) throw std::invalid_argument("virtual identification: duration must be positive");
+  rig::MeasurementOptions m;
+  m.sets = sets;
+  m.histories = histories;
+  m.duration_s = duration_s;
+  m.validate();
   identification.validate();
 }
 

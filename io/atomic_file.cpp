@@ -1,5 +1,12 @@
 #include "io/atomic_file.hpp"
 
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -7,7 +14,35 @@ namespace rigflex::io {
 namespace fs = std::filesystem;
 
 namespace {
-fs::path temp_name(const fs::path& target) { return target.string() + ".tmp-rigflex"; }
+
+// The temporaries being written, for removal when a signal ends the run.
+// Slots hold malloc'ed C strings so that the handler only reads memory and
+// calls unlink (async-signal-safe); a run has a handful of files open at
+// once, and a file that finds no free slot is written unregistered.
+constexpr size_t kSlots = 256;
+std::array<std::atomic<char*>, kSlots> g_pending{};
+
+size_t register_pending(const fs::path& p) {
+  char* s = strdup(p.c_str());
+  if (!s) return kSlots;
+  for (size_t i = 0; i < kSlots; ++i) {
+    char* expected = nullptr;
+    if (g_pending[i].compare_exchange_strong(expected, s)) return i;
+  }
+  std::free(s);
+  return kSlots;
+}
+
+void unregister_pending(size_t slot) {
+  if (slot < kSlots) std::free(g_pending[slot].exchange(nullptr));
+}
+
+// Unique per process and call: two runs (or two threads) writing the same
+// target do not write into each other's temporary.
+fs::path temp_name(const fs::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  return target.string() + ".tmp-rigflex-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
 
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
@@ -15,7 +50,24 @@ void write_text(const fs::path& p, const std::string& text) {
   out.close();
   if (!out) throw std::runtime_error("cannot write " + p.string());
 }
+
+extern "C" void remove_and_reraise(int sig) {
+  remove_pending_temporaries();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
 }  // namespace
+
+void remove_pending_temporaries() noexcept {
+  for (auto& slot : g_pending) {
+    if (const char* p = slot.load()) ::unlink(p);
+  }
+}
+
+void remove_temporaries_on_signals() {
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_and_reraise);
+}
 
 void write_atomically(const fs::path& target, const std::function<void(const fs::path&)>& write) {
   FileBatch batch;
@@ -36,24 +88,32 @@ void FileBatch::add_text(const fs::path& target, std::string text) {
 }
 
 void FileBatch::commit() {
-  std::vector<fs::path> written;
-  auto cleanup = [&] {
+  struct Written {
+    fs::path tmp;
+    size_t slot;
+  };
+  std::vector<Written> written;
+  auto release = [&](bool remove) {
     std::error_code ec;
-    for (const auto& p : written) fs::remove(p, ec);
+    for (const auto& w : written) {
+      if (remove) fs::remove(w.tmp, ec);
+      unregister_pending(w.slot);
+    }
   };
   try {
     for (const auto& [target, write] : items_) {
       if (target.has_parent_path()) fs::create_directories(target.parent_path());
       const fs::path tmp = temp_name(target);
-      written.push_back(tmp);
+      written.push_back({tmp, register_pending(tmp)});
       write(tmp);
       if (!fs::exists(tmp)) throw std::runtime_error("cannot write " + target.string());
     }
+    for (size_t i = 0; i < items_.size(); ++i) fs::rename(written[i].tmp, items_[i].first);
   } catch (...) {
-    cleanup();
+    release(true);
     throw;
   }
-  for (const auto& [target, write] : items_) fs::rename(temp_name(target), target);
+  release(false);
   items_.clear();
 }
 

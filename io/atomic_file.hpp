@@ -13,6 +13,16 @@ void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path&)>& write);
 void write_text_atomically(const std::filesystem::path& target, const std::string& text);
 
+// Temporaries are named uniquely (process and call), so two runs writing
+// into one folder never share one. While written, each is registered:
+// remove_pending_temporaries() unlinks every registered one and is
+// async-signal-safe; remove_temporaries_on_signals() installs it for
+// SIGINT, SIGTERM and SIGHUP (then the signal's default action: the process
+// ends as it would have), for a command line to call once. A library never
+// installs it by itself.
+void remove_pending_temporaries() noexcept;
+void remove_temporaries_on_signals();
+
 // A set of files committed together: all are written to temporary names
 // first and renamed only after every one succeeded.
 class FileBatch {

@@ -3,18 +3,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::io {
 
 fe::MassProperties parse_mass_record(const std::string& text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", "not YAML or JSON: " + e.msg);
-  }
+  YAML::Node root = load_yaml(text, source);
   const YamlContext ctx(source);
   if (root.IsMap() && root["mean"]) root = root["mean"];  // an identification.json
   // What identify writes beside the record in its `mean` is accepted and not used.

@@ -44,6 +44,7 @@ class MeasurementFileReader {
     const size_t header = read_comments(h);
     const Layout layout = read_header(header);
     read_samples(header, layout, h);
+    check_columns(header, layout, h);
     h.provenance.file = file_;
     // Sample k is on line header + 2 + k (1-based): the reader refuses blank lines among the samples.
     h.provenance.first_sample_line = static_cast<int>(header + 2);
@@ -155,6 +156,42 @@ class MeasurementFileReader {
     if (extra != found.end())
       fail(line, column_name(q, extra->first),
            "no rod " + std::to_string(extra->first) + ": the file has force columns F1..F" + std::to_string(rods));
+  }
+
+  // Values a rig cannot produce, and sensors that produced nothing. An
+  // angle past 90 degrees is a rod above its joint: the value is in degrees
+  // (a 3 degree swing reads 3.0); a force past 1e8 N is ten thousand
+  // tonnes. A column that holds one value over the whole record is a dead
+  // or disconnected channel (a real sensor always shows its noise): read as
+  // data it gave a negative Jxx, so it is refused, naming what it carried.
+  void check_columns(size_t header, const Layout& layout, const rig::Record& h) const {
+    constexpr double kMaxAngle = 1.5707963267948966, kMaxForce = 1e8;
+    const auto& names = layout.names;
+    const Eigen::Index rows = h.t.size();
+    auto check = [&](const Eigen::MatrixXd& x, const std::vector<size_t>& columns, double limit, const char* unit,
+                     const char* hint, const char* carries) {
+      for (Eigen::Index k = 0; k < x.cols(); ++k) {
+        const std::string name(names[columns[static_cast<size_t>(k)]]);
+        Eigen::Index at = 0;
+        if (x.col(k).cwiseAbs().maxCoeff(&at) > limit) {
+          fail(header + 1 + static_cast<size_t>(at), name,
+               "value " + number_text(x(at, k)) + " is beyond what the rig can measure (|x| <= " + number_text(limit) +
+                   " " + unit + ")" + hint);
+        }
+        if (rows >= 10 && x.col(k).maxCoeff() == x.col(k).minCoeff()) {
+          fail(header + 1, name,
+               "the column holds " + number_text(x(0, k)) + " in all " + std::to_string(rows) +
+                   " samples: a dead or disconnected sensor (a live one shows its noise); without it " + carries +
+                   " cannot be measured");
+        }
+      }
+    };
+    check(h.force, layout.force, kMaxForce, "N", ": are the forces in N?",
+          "the rod's force, and so the mass properties,");
+    check(h.alpha, layout.alpha, kMaxAngle, "rad", ": angles are in rad, not degrees",
+          "the rod's swing about its encoder axis, and so the body's motion,");
+    check(h.beta, layout.beta, kMaxAngle, "rad", ": angles are in rad, not degrees",
+          "the rod's swing across its encoder axis, and so the body's motion,");
   }
 
   void read_samples(size_t header, const Layout& layout, rig::Record& h) const {

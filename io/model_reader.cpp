@@ -8,6 +8,7 @@
 #include "fe/error.hpp"
 #include "fe/meshers.hpp"
 #include "fe/shell_types.hpp"
+#include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 
 namespace rigflex::io {
@@ -19,10 +20,22 @@ using fe::Vec3;
 constexpr double kNodeTolerance = 1e-6;  // [m] for `at:` references and mesher merging
 
 // Where each entity was defined, so that semantic errors found by
-// fe::Model::validate can point at a line.
+// fe::Model::validate can point at a line; an id given to two entities of
+// one kind is refused here, with both lines (otherwise one of them would be
+// reported for errors in the other, and references by id are ambiguous).
 class SourceMap {
  public:
-  void add(const std::string& kind, const std::string& id, const YAML::Node& n) { lines_[kind + "\n" + id] = n; }
+  explicit SourceMap(std::string file) : file_(std::move(file)) {}
+  void add(const std::string& kind, const std::string& id, const YAML::Node& n) {
+    const auto [it, fresh] = lines_.emplace(kind + "\n" + id, n);
+    if (fresh) return;
+    const int first = YamlContext::line_of(it->second), here = YamlContext::line_of(n);
+    const std::string what = kind == "node" ? "node id" : kind + " id";
+    throw InputError(file_, here, n.IsMap() && n["id"].IsDefined() ? "id" : "",
+                     what + " '" + id + "' is given twice (" +
+                         (first == here ? std::string("by this entry") : "first at line " + std::to_string(first)) +
+                         "): ids must be unique");
+  }
   YAML::Node find(const fe::EntityRef& e) const {
     auto it = lines_.find(e.kind + "\n" + e.id);
     if (it == lines_.end()) return YAML::Node();
@@ -31,6 +44,7 @@ class SourceMap {
   }
 
  private:
+  std::string file_;
   std::map<std::string, YAML::Node> lines_;
 };
 
@@ -118,7 +132,7 @@ class ModelFileReader {
     }
     c_.expect_sequence(v, key);
     std::vector<Vec3> out;
-    for (const auto& p : v) out.push_back(c_.as_vec3(p, key));
+    for (const auto& p : v) out.push_back(c_.as_vec3(p, key, ranges::coordinate));
     return out;
   }
 
@@ -135,7 +149,7 @@ class ModelFileReader {
     return id;
   }
   NodeId node_at(const YAML::Node& v, const std::string& key) {
-    const Vec3 x = c_.as_vec3(v, key);
+    const Vec3 x = c_.as_vec3(v, key, ranges::coordinate);
     fe::NodeMerger merger(m_, kNodeTolerance);
     if (auto id = merger.find(x)) return *id;
     c_.fail(v, key, "no node within 1e-6 m of this position");
@@ -159,7 +173,7 @@ class ModelFileReader {
     } else {
       const YAML::Node b = n["box"];
       if (!b.IsSequence() || b.size() != 2) c_.fail(b, "box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
-      const Vec3 lo = c_.as_vec3(b[0], "box"), hi = c_.as_vec3(b[1], "box");
+      const Vec3 lo = c_.as_vec3(b[0], "box", ranges::coordinate), hi = c_.as_vec3(b[1], "box", ranges::coordinate);
       for (const fe::Node& node : m_.nodes)
         if ((node.x.array() >= lo.array() - kNodeTolerance).all() && (node.x.array() <= hi.array() + kNodeTolerance).all())
           out.push_back(node.id);
@@ -192,7 +206,8 @@ class ModelFileReader {
   void material(const std::string& name, const YAML::Node& n) {
     c_.expect_map(n, "material '" + name + "'", {"E", "nu", "rho"});
     src_.add("material", name, n);
-    m_.materials[name] = {name, c_.number(n, "E"), c_.number(n, "nu"), c_.number(n, "rho")};
+    m_.materials[name] = {name, c_.number(n, "E", ranges::youngs_modulus), c_.number(n, "nu"),
+                          c_.number(n, "rho", ranges::density)};
   }
   void beam_section(const std::string& name, const YAML::Node& n) {
     c_.expect_map(n, "beam section '" + name + "'",
@@ -215,36 +230,36 @@ class ModelFileReader {
     s.shape = it->second;
     switch (s.shape) {
       case SectionShape::Rectangle:
-        s.width = c_.number(n, "width");
-        s.height = c_.number(n, "height");
+        s.width = c_.number(n, "width", ranges::section_dimension);
+        s.height = c_.number(n, "height", ranges::section_dimension);
         break;
       case SectionShape::Circle:
-        s.diameter = c_.number(n, "diameter");
+        s.diameter = c_.number(n, "diameter", ranges::section_dimension);
         break;
       case SectionShape::Tube:
-        s.diameter = c_.number(n, "diameter");
-        s.wall = c_.number(n, "wall");
+        s.diameter = c_.number(n, "diameter", ranges::section_dimension);
+        s.wall = c_.number(n, "wall", ranges::section_dimension);
         break;
       case SectionShape::Box:
-        s.width = c_.number(n, "width");
-        s.height = c_.number(n, "height");
-        s.wall = c_.number_or(n, "wall", 0.0);
-        s.web_thickness = c_.number_or(n, "web_thickness", 0.0);
-        s.flange_thickness = c_.number_or(n, "flange_thickness", 0.0);
+        s.width = c_.number(n, "width", ranges::section_dimension);
+        s.height = c_.number(n, "height", ranges::section_dimension);
+        s.wall = c_.number_or(n, "wall", 0.0, ranges::section_dimension);
+        s.web_thickness = c_.number_or(n, "web_thickness", 0.0, ranges::section_dimension);
+        s.flange_thickness = c_.number_or(n, "flange_thickness", 0.0, ranges::section_dimension);
         if (!n["wall"].IsDefined() && !(n["web_thickness"].IsDefined() && n["flange_thickness"].IsDefined()))
           c_.fail(n, "wall", "a box needs 'wall' or both 'web_thickness' and 'flange_thickness'");
         break;
       case SectionShape::ISection:
-        s.width = c_.number(n, "width");
-        s.height = c_.number(n, "height");
-        s.web_thickness = c_.number(n, "web_thickness");
-        s.flange_thickness = c_.number(n, "flange_thickness");
+        s.width = c_.number(n, "width", ranges::section_dimension);
+        s.height = c_.number(n, "height", ranges::section_dimension);
+        s.web_thickness = c_.number(n, "web_thickness", ranges::section_dimension);
+        s.flange_thickness = c_.number(n, "flange_thickness", ranges::section_dimension);
         break;
       case SectionShape::General:
-        s.A = c_.number(n, "A");
-        s.Iy = c_.number(n, "Iy");
-        s.Iz = c_.number(n, "Iz");
-        s.J = c_.number(n, "J");
+        s.A = c_.number(n, "A", ranges::area);
+        s.Iy = c_.number(n, "Iy", ranges::second_moment);
+        s.Iz = c_.number(n, "Iz", ranges::second_moment);
+        s.J = c_.number(n, "J", ranges::second_moment);
         s.shear_area_y = c_.optional_number(n, "shear_area_y");
         s.shear_area_z = c_.optional_number(n, "shear_area_z");
         break;
@@ -254,14 +269,15 @@ class ModelFileReader {
   void shell_section(const std::string& name, const YAML::Node& n) {
     c_.expect_map(n, "shell section '" + name + "'", {"material", "thickness"});
     src_.add("shell_section", name, n);
-    m_.shell_sections[name] = {name, c_.text(n, "material"), c_.number(n, "thickness")};
+    m_.shell_sections[name] = {name, c_.text(n, "material"), c_.number(n, "thickness", ranges::shell_thickness)};
   }
   void node(const YAML::Node& n) {
     if (!n.IsSequence() || n.size() != 4) c_.fail(n, index_, "a node is [id, x, y, z]");
     const NodeId id = c_.as_integer(n[0], "nodes");
-    src_.add("node", std::to_string(id), n);
     if (m_.has_node(id)) c_.fail(n, "nodes", "duplicate node id " + std::to_string(id));
-    m_.add_node(id, {c_.as_number(n[1], "nodes"), c_.as_number(n[2], "nodes"), c_.as_number(n[3], "nodes")});
+    src_.add("node", std::to_string(id), n);
+    const auto x = [&](int i) { return c_.as_number(n[i], "nodes", ranges::coordinate); };
+    m_.add_node(id, {x(1), x(2), x(3)});
   }
   void beam(const YAML::Node& n) {
     c_.expect_map(n, index_, {"id", "nodes", "section", "orientation", "theory", "mass", "rotary_inertia"});
@@ -300,8 +316,8 @@ class ModelFileReader {
                   {"id", "from", "to", "elements", "section", "orientation", "theory", "mass", "rotary_inertia"});
     fe::MemberSpec s;
     s.id = id_or_index(n);
-    s.from = c_.vec3(n, "from");
-    s.to = c_.vec3(n, "to");
+    s.from = c_.vec3(n, "from", ranges::coordinate);
+    s.to = c_.vec3(n, "to", ranges::coordinate);
     s.elements = static_cast<int>(c_.integer(n, "elements"));
     s.section = c_.text(n, "section");
     if (n["orientation"].IsDefined()) s.orientation = c_.vec3(n, "orientation");
@@ -335,13 +351,13 @@ class ModelFileReader {
                    "divisions", "order", "end_plates", "end_couplings", "mass"});
     fe::BoxGirderSpec s;
     s.id = id_or_index(n);
-    s.from = c_.vec3(n, "from");
-    s.to = c_.vec3(n, "to");
+    s.from = c_.vec3(n, "from", ranges::coordinate);
+    s.to = c_.vec3(n, "to", ranges::coordinate);
     if (n["up"].IsDefined()) s.up = c_.vec3(n, "up");
-    s.width = c_.number(n, "width");
-    s.height = c_.number(n, "height");
-    s.web_thickness = c_.number(n, "web_thickness");
-    s.flange_thickness = c_.number(n, "flange_thickness");
+    s.width = c_.number(n, "width", ranges::section_dimension);
+    s.height = c_.number(n, "height", ranges::section_dimension);
+    s.web_thickness = c_.number(n, "web_thickness", ranges::section_dimension);
+    s.flange_thickness = c_.number(n, "flange_thickness", ranges::section_dimension);
     s.material = c_.text(n, "material");
     const YAML::Node d = c_.required(n, "divisions");
     if (!d.IsSequence() || d.size() != 3) c_.fail(d, "divisions", "expected [along, across width, across height]");
@@ -367,7 +383,7 @@ class ModelFileReader {
     fe::FixedFrameSpec s;
     s.id = c_.text_or(n, "id", s.id);
     s.column_bases = points(n, "column_bases");
-    s.height = c_.number(n, "height");
+    s.height = c_.number(n, "height", ranges::length);
     s.column_section = c_.text(n, "column_section");
     s.beam_section = c_.text(n, "beam_section");
     if (n["extra_beams"].IsDefined()) {
@@ -390,8 +406,8 @@ class ModelFileReader {
                   {"id", "corner_min", "corner_max", "bays", "section", "joints", "elements_per_member", "joint_set"});
     fe::CarryingFrameSpec s;
     s.id = c_.text_or(n, "id", s.id);
-    s.corner_min = c_.vec3(n, "corner_min");
-    s.corner_max = c_.vec3(n, "corner_max");
+    s.corner_min = c_.vec3(n, "corner_min", ranges::coordinate);
+    s.corner_max = c_.vec3(n, "corner_max", ranges::coordinate);
     std::tie(s.bays_x, s.bays_y) = pair_of_ints(n, "bays");
     s.section = c_.text(n, "section");
     s.joints = points(n, "joints");
@@ -434,9 +450,9 @@ class ModelFileReader {
     p.id = id_or_index(n);
     src_.add("point_mass", p.id, n);
     p.node = node_ref(n, "node", "at");
-    p.mass = c_.number(n, "mass");
+    p.mass = c_.number(n, "mass", ranges::point_mass);
     if (n["inertia"].IsDefined()) {
-      const auto J = c_.numbers(n, "inertia", 6);
+      const auto J = c_.numbers(n, "inertia", 6, ranges::inertia);
       std::copy(J.begin(), J.end(), p.inertia.begin());
     }
     m_.point_masses.push_back(p);
@@ -490,15 +506,10 @@ class ModelFileReader {
 
 ModelFile parse_model(const std::string& text, const std::string& source) {
   const YamlContext ctx(source);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(source, e.mark.line + 1, "", "malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source, 1, "", "a model file is a mapping of sections (materials, nodes, ...)");
   ModelFile out;
-  SourceMap src;
+  SourceMap src(source);
   try {
     ModelFileReader(ctx, out.model, src).read(root);
     out.model.validate();

@@ -9,6 +9,7 @@
 #include "fe/error.hpp"
 #include "io/model_reader.hpp"
 #include "io/reduced_export.hpp"
+#include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 #include "io/yaml_parameters.hpp"
 #include "reduction/frame_reduction.hpp"
@@ -46,8 +47,8 @@ struct RigFileReader {
   rig::RigGeometry geometry(const YAML::Node& g) const {
     ctx.expect_map(g, "geometry", {"gravity", "reference_point", "rods"});
     rig::RigGeometry out;
-    out.gravity = ctx.number_or(g, "gravity", 9.80665);
-    out.reference_point = ctx.vec3(g, "reference_point");
+    out.gravity = ctx.number_or(g, "gravity", 9.80665, ranges::gravity);
+    out.reference_point = ctx.vec3(g, "reference_point", ranges::coordinate);
     const YAML::Node rods_node = ctx.required(g, "rods");
     ctx.expect_sequence(rods_node, "rods");
     for (const auto& r : rods_node) {
@@ -55,9 +56,9 @@ struct RigFileReader {
       within("geometry.rods[" + std::to_string(out.rods.size() + 1) + "]", [&] {
         ctx.expect_map(r, "rods[]", {"upper", "lower", "length", "encoder_axis"});
         rig::RodGeometry rod;
-        rod.upper = ctx.vec3(r, "upper");
-        rod.lower = ctx.vec3(r, "lower");
-        rod.length = ctx.number(r, "length");
+        rod.upper = ctx.vec3(r, "upper", ranges::coordinate);
+        rod.lower = ctx.vec3(r, "lower", ranges::coordinate);
+        rod.length = ctx.number(r, "length", ranges::length);
         rod.encoder_axis = ctx.vec3(r, "encoder_axis");
         out.rods.push_back(rod);
       });
@@ -83,9 +84,9 @@ struct RigFileReader {
   fe::MassProperties body(const YAML::Node& b) const {
     ctx.expect_map(b, "body", {"mass", "cog", "inertia", "name", "uncertainty"});
     fe::MassProperties m;
-    m.mass = ctx.number(b, "mass");
-    m.cog = ctx.vec3(b, "cog");
-    const auto J = ctx.numbers(b, "inertia", 6);
+    m.mass = ctx.number(b, "mass", ranges::mass);
+    m.cog = ctx.vec3(b, "cog", ranges::coordinate);
+    const auto J = ctx.numbers(b, "inertia", 6, ranges::inertia);
     m.inertia = rig::inertia_tensor({J[0], J[1], J[2], J[3], J[4], J[5]});
     return m;
   }
@@ -107,7 +108,7 @@ struct RigFileReader {
     }
     if (n["stiffness"]) p.stiffness = per_rod(n, "stiffness");
     if (by_material) {
-      const double E = ctx.number(n, "youngs_modulus");
+      const double E = ctx.number(n, "youngs_modulus", ranges::youngs_modulus);
       const std::vector<double> A = per_rod(n, "area");
       for (int i = 0; i < rods; ++i) {
         p.stiffness.push_back(E * A[static_cast<size_t>(i)] / geometry.rods[static_cast<size_t>(i)].length);
@@ -126,7 +127,7 @@ struct RigFileReader {
   rig::SensorOptions sensors(const YAML::Node& s) const {
     ctx.expect_map(s, "sensors", {"sample_rate", "load_cell", "encoder"});
     rig::SensorOptions o;
-    o.sample_rate_hz = ctx.number_or(s, "sample_rate", o.sample_rate_hz);
+    o.sample_rate_hz = ctx.number_or(s, "sample_rate", o.sample_rate_hz, ranges::sample_rate);
     if (s["load_cell"]) {
       within("sensors.load_cell", [&] {
         const YAML::Node lc = s["load_cell"];
@@ -337,12 +338,7 @@ YAML::Node node_at(const YAML::Node& root, const std::string& path) {
 
 rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& source,
                             const std::filesystem::path& base) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(source, e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
-  }
+  const YAML::Node root = load_yaml(yaml_text, source);
   RigFileReader r{YamlContext(source), base};
   const YamlContext& ctx = r.ctx;
   if (!root.IsMap()) throw InputError(source, 1, "", "a rig file is a mapping with at least 'geometry' and 'body'");
@@ -441,12 +437,7 @@ void add_effects(rig::RigModel& model, const std::filesystem::path& file, const 
   if (!in) throw InputError(file.string(), 0, "", "cannot open the effects file");
   std::stringstream ss;
   ss << in.rdbuf();
-  YAML::Node root;
-  try {
-    root = YAML::Load(ss.str());
-  } catch (const YAML::ParserException& e) {
-    throw InputError(file.string(), e.mark.line + 1, "", std::string("malformed YAML: ") + e.msg);
-  }
+  const YAML::Node root = load_yaml(ss.str(), file.string());
   RigFileReader r{YamlContext(file.string()), file.parent_path()};
   if (!root.IsMap() || !root["effects"]) {
     throw InputError(file.string(), 1, "effects", "an effects file is a mapping with the one key 'effects'");

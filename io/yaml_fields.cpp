@@ -102,4 +102,36 @@ std::vector<double> YamlContext::numbers(const YAML::Node& map, const std::strin
   return out;
 }
 
+double YamlContext::as_number(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const {
+  const double x = as_number(v, key);
+  if (const std::string why = range_problem(x, r); !why.empty()) fail(v, key, why);
+  return x;
+}
+
+Eigen::Vector3d YamlContext::as_vec3(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const {
+  const Eigen::Vector3d x = as_vec3(v, key);
+  for (int i = 0; i < 3; ++i) as_number(v[i], key, r);
+  return x;
+}
+
+double YamlContext::number(const YAML::Node& map, const std::string& key, const PhysicalRange& r) const {
+  return as_number(required(map, key), key, r);
+}
+
+double YamlContext::number_or(const YAML::Node& map, const std::string& key, double fallback,
+                              const PhysicalRange& r) const {
+  return map[key].IsDefined() ? as_number(map[key], key, r) : fallback;
+}
+
+Eigen::Vector3d YamlContext::vec3(const YAML::Node& map, const std::string& key, const PhysicalRange& r) const {
+  return as_vec3(required(map, key), key, r);
+}
+
+std::vector<double> YamlContext::numbers(const YAML::Node& map, const std::string& key, size_t count,
+                                         const PhysicalRange& r) const {
+  const std::vector<double> out = numbers(map, key, count);
+  for (size_t i = 0; i < count; ++i) as_number(map[key][i], key, r);
+  return out;
+}
+
 }  // namespace rigflex::io

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/input_error.hpp"
+#include "io/physical_range.hpp"
 
 namespace rigflex::io {
 
@@ -37,11 +38,19 @@ class YamlContext {
   std::string text_or(const YAML::Node& map, const std::string& key, const std::string& fallback) const;
   Eigen::Vector3d vec3(const YAML::Node& map, const std::string& key) const;
   std::vector<double> numbers(const YAML::Node& map, const std::string& key, size_t count) const;
+  // The same, each value also checked against its physical range.
+  double number(const YAML::Node& map, const std::string& key, const PhysicalRange& r) const;
+  double number_or(const YAML::Node& map, const std::string& key, double fallback, const PhysicalRange& r) const;
+  Eigen::Vector3d vec3(const YAML::Node& map, const std::string& key, const PhysicalRange& r) const;
+  std::vector<double> numbers(const YAML::Node& map, const std::string& key, size_t count,
+                              const PhysicalRange& r) const;
 
   // Conversions of a value node (not a mapping entry); `key` names it in errors.
   double as_number(const YAML::Node& v, const std::string& key) const;
   long as_integer(const YAML::Node& v, const std::string& key) const;
   Eigen::Vector3d as_vec3(const YAML::Node& v, const std::string& key) const;
+  double as_number(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const;
+  Eigen::Vector3d as_vec3(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const;
 
  private:
   std::string file_;

@@ -228,7 +228,7 @@ Record record(const RigSystem& rig, Stepper& integ, const Configuration& equilib
     integ.reset(0.0, equilibrium, rig.at_rest());
   }
   const double fs = sensors.sample_rate_hz;
-  const Eigen::Index samples = static_cast<Eigen::Index>(std::floor(request.duration_s * fs + 1e-9)) + 1;
+  const Eigen::Index samples = record_samples(request.duration_s, fs);
   const int n = rig.rods();
   h.t.resize(samples);
   h.force.resize(samples, n);
@@ -300,14 +300,40 @@ Push draw_push(const RigSystem& rig, std::uint64_t seed, int set, int history) {
   return p;
 }
 
+Eigen::Index record_samples(double duration_s, double sample_rate_hz) {
+  if (!(duration_s > 0) || !(sample_rate_hz > 0)) {
+    throw std::invalid_argument("a record needs a positive duration and sample rate");
+  }
+  // Checked in floating point: the count itself would overflow an integer
+  // (a duration of 1e17 s gave a record of no samples).
+  const double n = std::floor(duration_s * sample_rate_hz + 1e-9) + 1.0;
+  if (!(n <= kMaxRecordSamples)) {
+    char msg[256];
+    std::snprintf(msg, sizeof msg,
+                  "a record of %g s at %g Hz would hold %.3g samples; at most %.3g are simulated per record "
+                  "(%.3g h at this rate): shorten the duration",
+                  duration_s, sample_rate_hz, n, kMaxRecordSamples, kMaxRecordSamples / sample_rate_hz / 3600.0);
+    throw std::invalid_argument(msg);
+  }
+  return static_cast<Eigen::Index>(n);
+}
+
 void MeasurementOptions::validate() const {
   if (sets < 1) throw std::invalid_argument("sets must be at least 1");
   if (histories < 1) throw std::invalid_argument("histories must be at least 1");
+  // A measurement is some sets of a few histories; far more is a typing slip
+  // (2e9 histories ran until killed).
+  if (static_cast<double>(sets) * histories > kMaxHistories) {
+    throw std::invalid_argument("sets x histories = " + std::to_string(static_cast<long long>(sets) * histories) +
+                                " records; at most " + std::to_string(static_cast<long>(kMaxHistories)) +
+                                " are simulated in one run");
+  }
   if (!(duration_s > 0)) throw std::invalid_argument("duration must be positive");
 }
 
 std::vector<std::vector<Record>> simulate_measurement(const RigSystem& rig, const MeasurementOptions& options) {
   options.validate();
+  record_samples(options.duration_s, rig.model().sensors.sample_rate_hz);  // refused before the equilibrium's work
   std::optional<Linearization> lin;
   Configuration eq;
   if (rig.model().simulation.method == IntegrationMethod::generalized_alpha) {

@@ -66,9 +66,17 @@ struct HistoryRequest {
 Record simulate_history(const RigSystem& rig, const Configuration& equilibrium, const HistoryRequest& request,
                                 IntegratorStatistics* statistics = nullptr);
 
+// Samples in a record of `duration_s` at `sample_rate_hz` (both ends
+// included); std::invalid_argument past kMaxRecordSamples (a record of 8.3 h
+// at 500 Hz, about 1.5 GB in memory), before any work is done.
+inline constexpr double kMaxRecordSamples = 1.5e7;
+Eigen::Index record_samples(double duration_s, double sample_rate_hz);
+
 // Draws the push of history `history` of set `set` from `seed` (deterministic).
 Push draw_push(const RigSystem& rig, std::uint64_t seed, int set, int history);
 std::uint64_t noise_seed(std::uint64_t seed, int set, int history);
+
+inline constexpr double kMaxHistories = 1e5;  // sets x histories in one measurement
 
 struct MeasurementOptions {
   int sets = 1;

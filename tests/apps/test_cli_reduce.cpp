@@ -103,7 +103,7 @@ TEST(CliReduce, InterfaceThatCannotHoldAFloatingFrameNamesTheFreeDofs) {
   const fs::path model = write_model("two_joints", text.str());
   const fs::path out = fresh_dir("reduce_mech");
   const CliRun r = run("reduce " + model.string() + " --interface two --quiet --out " + out.string());
-  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.out.find("free DOFs"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("node "), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
