@@ -6,17 +6,19 @@
 // rig's modes for ParaView (DIR/rig_modes.pvd).
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 
 #include "apps/commands.hpp"
-#include "io/integration_error.hpp"
-#include "io/atomic_file.hpp"
-#include "io/rig_reader.hpp"
-#include "io/rig_vtk.hpp"
-#include "rig/design_check.hpp"
-#include "rig/equilibrium.hpp"
 #include "identify/identification_rig.hpp"
 #include "identify/predicted_error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/integration_error.hpp"
+#include "io/output_folder.hpp"
+#include "io/rig_reader.hpp"
+#include "io/rig_vtk.hpp"
 #include "report/check_json.hpp"
+#include "rig/design_check.hpp"
+#include "rig/equilibrium.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -82,6 +84,8 @@ void print(const rig::CheckResult& r) {
 }
 
 int run(const CheckArgs& a) {
+  std::optional<io::OutputFolder> folder;
+  if (!a.out.empty()) folder.emplace(a.out, "check");
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "check: frame reduction: %s\n", s.c_str()); };
   const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
@@ -122,7 +126,7 @@ int run(const CheckArgs& a) {
     batch.add_text(out / "check.json", report::check_json(model, r, prediction, conclusion).dump(2) + "\n");
     const rig::RigSystem rig(model);
     io::add_rig_mode_files(batch, out, rig, r.linearization);
-    batch.commit();
+    folder->commit(batch);
     std::printf("wrote %s/check.json and rig_modes.pvd (%zu modes)\n", a.out.c_str(), r.linearization.modes.size());
   }
   return 0;

@@ -18,6 +18,7 @@
 #include "io/atomic_file.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/output_folder.hpp"
 #include "io/rig_reader.hpp"
 #include "report/compare_json.hpp"
 #include "report/reports.hpp"
@@ -104,7 +105,7 @@ std::string model_file_name(const MeasuredModel& mm, size_t i) {
   return mine;
 }
 
-int compare_with(MeasuredModel& mm, const CompareArgs& a) {
+int compare_with(MeasuredModel& mm, const CompareArgs& a, io::OutputFolder& folder) {
   report::CompareContext ctx;
   ctx.rig = mm.model.name;
   ctx.model_label = mm.label;
@@ -170,7 +171,7 @@ int compare_with(MeasuredModel& mm, const CompareArgs& a) {
     const rig::Record th = model_history(c.histories[i], rods, mm.label);
     batch.add(out / "model" / model_file_name(mm, i), [th](const std::filesystem::path& p) { io::write_record_csv(p, th); });
   }
-  batch.commit();
+  folder.commit(batch);
   // The study is written once the outputs are: a failed run leaves no entry.
   if (!a.study.empty()) report::record_in_study(a.study, study_entry);
   std::printf("wrote %s/compare.json, %s/compare.html and %zu model histories in %s/model\n", a.out.c_str(),
@@ -179,8 +180,9 @@ int compare_with(MeasuredModel& mm, const CompareArgs& a) {
 }
 
 int run(const CompareArgs& a) {
+  io::OutputFolder folder(a.out, "compare");
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "compare");
-  return run_on_measured_model(mm, [&] { return compare_with(mm, a); });
+  return run_on_measured_model(mm, [&] { return compare_with(mm, a, folder); });
 }
 
 }  // namespace

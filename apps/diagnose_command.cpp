@@ -18,6 +18,7 @@
 #include "diagnose/diagnosis.hpp"
 #include "io/atomic_file.hpp"
 #include "io/effects_file.hpp"
+#include "io/output_folder.hpp"
 #include "io/rig_reader.hpp"
 #include "report/compare_json.hpp"
 #include "report/reports.hpp"
@@ -77,7 +78,7 @@ void print_body(const diagnose::Diagnosis& d) {
   print_parameter_table(d.body);
 }
 
-int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
+int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a, io::OutputFolder& folder) {
   diagnose::DiagnosisOptions o;
   if (a.fit_window > 0) o.compare.fit_window_s = a.fit_window;
   o.threads = a.threads;
@@ -138,15 +139,16 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a) {
   if (!d.chain.empty() && !d.chain.back().rig_block.empty()) {
     batch.add_text(out / "effects" / "found.yaml", found_file_text(d));
   }
-  batch.commit();
+  folder.commit(batch);
   std::printf("wrote %s/diagnosis.json, %s/diagnosis.html and the fitted effects in %s/effects\n", a.out.c_str(),
               a.out.c_str(), a.out.c_str());
   return 0;
 }
 
 int run(const DiagnoseArgs& a) {
+  io::OutputFolder folder(a.out, "diagnose");
   MeasuredModel mm = read_measured_model(a.rig, a.effects, a.data, a.quiet, "diagnose");
-  return run_on_measured_model(mm, [&] { return diagnose_with(mm, a); });
+  return run_on_measured_model(mm, [&] { return diagnose_with(mm, a, folder); });
 }
 
 }  // namespace

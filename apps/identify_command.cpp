@@ -9,17 +9,18 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
-#include "report/identification_report.hpp"
+#include "identify/identification.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mass_record.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/output_folder.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_layout.hpp"
-#include "report/reports.hpp"
 #include "io/rig_reader.hpp"
+#include "report/identification_report.hpp"
+#include "report/reports.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
-#include "identify/identification.hpp"
 #include "rig/parallel_for.hpp"
 
 namespace rigflex::app {
@@ -108,6 +109,7 @@ std::vector<identify::IdentificationResult> identify_all(const identify::Identif
 }
 
 int run(const IdentifyArgs& a) {
+  io::OutputFolder folder(a.out, "identify");
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "identify: frame reduction: %s\n", s.c_str()); };
   rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
@@ -156,7 +158,7 @@ int run(const IdentifyArgs& a) {
   io::FileBatch batch;
   batch.add_text(out / "identification.json", report.json().dump(2) + "\n");
   batch.add_text(out / "identification.html", report::identification_html(report).html());
-  batch.commit();
+  folder.commit(batch);
   std::printf("wrote %s/identification.json and %s/identification.html\n", a.out.c_str(), a.out.c_str());
   return 0;
 }

@@ -4,10 +4,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "apps/commands.hpp"
 #include "io/atomic_file.hpp"
 #include "io/model_reader.hpp"
+#include "io/output_folder.hpp"
 #include "io/vtk_modes.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "reduction/zero_frequency_modes.hpp"
@@ -76,6 +78,8 @@ void print_table(const reduction::ModalAnalysis& a) {
 }
 
 int run(const ModesArgs& args) {
+  std::optional<io::OutputFolder> folder;
+  if (!args.out.empty()) folder.emplace(args.out, "modes");
   const io::ModelFile m = io::read_model(args.model);
   linalg::EigenOptions opt;
   opt.count = args.count;
@@ -127,7 +131,7 @@ int run(const ModesArgs& args) {
     for (const auto& z : zero) j["zero_frequency_modes"].push_back(z.mode + 1);
     batch.add_text(dir / "modes.json", j.dump(2) + "\n");
     io::add_mode_shape_files(batch, dir, m.model, a.system.dofs, a.summary.frequencies_hz, a.result.vectors);
-    batch.commit();
+    folder->commit(batch);
     std::printf("wrote %s/modes.json, modes.pvd and %ld mode_NNN.vtu\n", args.out.c_str(),
                 static_cast<long>(a.result.vectors.cols()));
   }

@@ -9,6 +9,7 @@
 #include "fe/error.hpp"
 #include "io/input_error.hpp"
 #include "io/model_reader.hpp"
+#include "io/output_folder.hpp"
 #include "io/reduced_export.hpp"
 #include "reduction/frame_reduction.hpp"
 
@@ -82,6 +83,7 @@ void print_summary(const reduction::ReducedFrame& r) {
 }
 
 int run(const ReduceArgs& args) {
+  io::OutputFolder folder(args.out, "reduce");
   const io::ModelFile m = io::read_model(args.model);
   const reduction::FrameReductionOptions o = to_options(args);
   reduction::ReducedFrame r;
@@ -100,7 +102,9 @@ int run(const ReduceArgs& args) {
   }
   r.name = m.name;
   print_summary(r);
-  io::write_reduced_frame(args.out, r);
+  io::FileBatch batch;
+  io::add_reduced_frame_files(batch, args.out, r);
+  folder.commit(batch);
   std::printf("wrote %s/reduced.json, reduced.mat, K.mtx, M.mtx, C.mtx and ss_A..ss_D.mtx\n", args.out.c_str());
   return 0;
 }

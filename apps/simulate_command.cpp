@@ -6,9 +6,10 @@
 #include <filesystem>
 
 #include "apps/commands.hpp"
-#include "io/integration_error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/integration_error.hpp"
 #include "io/measurement_csv.hpp"
+#include "io/output_folder.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/equilibrium.hpp"
 #include "rig/simulation.hpp"
@@ -43,6 +44,7 @@ rig::Record file_record(const rig::Record& h, const rig::RigModel& model, const 
 }
 
 int run(const SimulateArgs& a) {
+  io::OutputFolder folder(a.out, "simulate");
   const auto start = std::chrono::steady_clock::now();
   io::RigReadOptions ro;
   if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "simulate: frame reduction: %s\n", s.c_str()); };
@@ -77,7 +79,7 @@ int run(const SimulateArgs& a) {
                                file_record(sets[k][j], model, a, static_cast<int>(k + 1), static_cast<int>(j + 1))));
     }
   }
-  batch.commit();
+  folder.commit(batch);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::printf("rig: %s, %d rods, %.6g kg, effects:", model.name.c_str(), rig.rods(), model.body.mass);
   if (model.effects.empty()) std::printf(" none");

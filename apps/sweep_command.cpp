@@ -7,11 +7,12 @@
 #include <sstream>
 
 #include "apps/commands.hpp"
+#include "identify/sweep.hpp"
+#include "io/atomic_file.hpp"
+#include "io/output_folder.hpp"
+#include "io/rig_reader.hpp"
 #include "report/reports.hpp"
 #include "report/sweep_json.hpp"
-#include "io/atomic_file.hpp"
-#include "io/rig_reader.hpp"
-#include "identify/sweep.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -39,6 +40,7 @@ identify::ScaleRange parse_range(const std::string& text, const std::string& opt
 }
 
 int run(const SweepArgs& a) {
+  io::OutputFolder folder(a.out, "sweep");
   const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig));
   identify::SweepOptions o;
   o.mass = parse_range(a.mass_scale, "--mass-scale");
@@ -73,7 +75,7 @@ int run(const SweepArgs& a) {
   batch.add_text(out / "sweep.csv", report::sweep_csv(points));
   batch.add_text(out / "sweep.json", report::sweep_json(model.name, settings, points).dump(2) + "\n");
   batch.add_text(out / "sweep.html", report::sweep_html(model.name, points).html());
-  batch.commit();
+  folder.commit(batch);
   std::printf("(errors: identified - true; zG mean over the sets in mm, Jyy mean relative in %%)\nwrote %s/sweep.csv, sweep.json and sweep.html\n",
               a.out.c_str());
   return 0;

@@ -22,7 +22,9 @@ namespace {
 constexpr size_t kSlots = 256;
 std::array<std::atomic<char*>, kSlots> g_pending{};
 
-size_t register_pending(const fs::path& p) {
+}  // namespace
+
+size_t register_temporary(const fs::path& p) {
   char* s = strdup(p.c_str());
   if (!s) return kSlots;
   for (size_t i = 0; i < kSlots; ++i) {
@@ -33,9 +35,11 @@ size_t register_pending(const fs::path& p) {
   return kSlots;
 }
 
-void unregister_pending(size_t slot) {
+void unregister_temporary(size_t slot) noexcept {
   if (slot < kSlots) std::free(g_pending[slot].exchange(nullptr));
 }
+
+namespace {
 
 // Unique per process and call: two runs (or two threads) writing the same
 // target do not write into each other's temporary.
@@ -87,6 +91,12 @@ void FileBatch::add_text(const fs::path& target, std::string text) {
   add(target, [text = std::move(text)](const fs::path& p) { write_text(p, text); });
 }
 
+std::vector<fs::path> FileBatch::targets() const {
+  std::vector<fs::path> out;
+  for (const auto& item : items_) out.push_back(item.first);
+  return out;
+}
+
 void FileBatch::commit() {
   struct Written {
     fs::path tmp;
@@ -97,14 +107,14 @@ void FileBatch::commit() {
     std::error_code ec;
     for (const auto& w : written) {
       if (remove) fs::remove(w.tmp, ec);
-      unregister_pending(w.slot);
+      unregister_temporary(w.slot);
     }
   };
   try {
     for (const auto& [target, write] : items_) {
       if (target.has_parent_path()) fs::create_directories(target.parent_path());
       const fs::path tmp = temp_name(target);
-      written.push_back({tmp, register_pending(tmp)});
+      written.push_back({tmp, register_temporary(tmp)});
       write(tmp);
       if (!fs::exists(tmp)) throw std::runtime_error("cannot write " + target.string());
     }

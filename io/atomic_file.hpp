@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace rigflex::io {
 
@@ -22,6 +23,10 @@ void write_text_atomically(const std::filesystem::path& target, const std::strin
 // installs it by itself.
 void remove_pending_temporaries() noexcept;
 void remove_temporaries_on_signals();
+// Registers another file for removal on those signals (an output folder's
+// lock); returns the slot to give back when the file is gone.
+size_t register_temporary(const std::filesystem::path& file);
+void unregister_temporary(size_t slot) noexcept;
 
 // A set of files committed together: all are written to temporary names
 // first and renamed only after every one succeeded.
@@ -30,6 +35,7 @@ class FileBatch {
   void add(const std::filesystem::path& target, std::function<void(const std::filesystem::path&)> write);
   void add_text(const std::filesystem::path& target, std::string text);
   void commit();  // throws std::runtime_error naming the file that failed
+  std::vector<std::filesystem::path> targets() const;
 
  private:
   std::vector<std::pair<std::filesystem::path, std::function<void(const std::filesystem::path&)>>> items_;

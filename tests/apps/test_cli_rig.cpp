@@ -162,7 +162,8 @@ TEST(CliRig, SimulateWritesMeasurementFilesOfTheSpec) {
   const CliRun r = run("simulate " + rig.file.string() +
                        " --sets 1 --histories 2 --duration 2 --seed 3 --quiet --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.out;
-  EXPECT_EQ(files_under(out), (std::vector<fs::path>{"set1/h1.csv", "set1/h2.csv"}));
+  // The records, and the manifest of what this run wrote (docs/reliability.md).
+  EXPECT_EQ(files_under(out), (std::vector<fs::path>{".rigflex-manifest-simulate", "set1/h1.csv", "set1/h2.csv"}));
   for (const char* name : {"h1.csv", "h2.csv"}) {
     SCOPED_TRACE(name);
     const fs::path file = out / "set1" / name;
