@@ -173,7 +173,8 @@ class ModelFileReader {
     } else {
       const YAML::Node b = n["box"];
       if (!b.IsSequence() || b.size() != 2) c_.fail(b, "box", "expected [[xmin, ymin, zmin], [xmax, ymax, zmax]]");
-      const Vec3 lo = c_.as_vec3(b[0], "box", ranges::coordinate), hi = c_.as_vec3(b[1], "box", ranges::coordinate);
+      // Bounds of a selection, not geometry: +-1e9 for "everything along x" is fine.
+      const Vec3 lo = c_.as_vec3(b[0], "box"), hi = c_.as_vec3(b[1], "box");
       for (const fe::Node& node : m_.nodes)
         if ((node.x.array() >= lo.array() - kNodeTolerance).all() && (node.x.array() <= hi.array() + kNodeTolerance).all())
           out.push_back(node.id);

@@ -26,7 +26,9 @@ struct PhysicalRange {
 std::string range_problem(double x, const PhysicalRange& r);
 
 namespace ranges {
-inline constexpr PhysicalRange youngs_modulus{"Young's modulus", "Pa", 1e6, 2e12, "steel", 2.1e11};
+// Up to 1e15: a link made "rigid" by a modulus 1000 x steel's is a common
+// modelling habit; the slips this catches are MPa and GPa, and overflow.
+inline constexpr PhysicalRange youngs_modulus{"Young's modulus", "Pa", 1e6, 1e15, "steel", 2.1e11};
 inline constexpr PhysicalRange density{"density", "kg/m^3", 10.0, 3e4, "steel", 7850.0};
 inline constexpr PhysicalRange coordinate{"a coordinate", "m", 0.0, 1e3, "a rig's size", 3.0, true};
 inline constexpr PhysicalRange length{"a length", "m", 1e-6, 1e3, "a rig's size", 3.0};
