@@ -1,5 +1,6 @@
 #include "io/model_reader.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -18,6 +19,12 @@ using fe::NodeId;
 using fe::Vec3;
 
 constexpr double kNodeTolerance = 1e-6;  // [m] for `at:` references and mesher merging
+// Elements along one edge of a mesher. 10000 x 10000 shells would be 6e8
+// DOFs; the largest models solved here are 1e6 (docs/eigen-solver.md).
+constexpr long kMaxDivisions = 10000;
+// Elements one mesher may make: 4e6 shells are about 2.4e7 DOFs, 24 x the
+// largest model solved here.
+constexpr double kMaxGenerated = 4e6;
 
 // Where each entity was defined, so that semantic errors found by
 // fe::Model::validate can point at a line; an id given to two entities of
@@ -119,10 +126,20 @@ class ModelFileReader {
     }
     c_.fail(n["order"], "order", "expected " + known);
   }
+  void bounded_mesh(const YAML::Node& at, double elements) {
+    if (elements > kMaxGenerated) {
+      char msg[200];
+      std::snprintf(msg, sizeof msg,
+                    "these divisions make %.3g elements (about %.2g DOFs); at most %.0e per mesher: a model this "
+                    "size does not fit a machine's memory",
+                    elements, 6.0 * elements, kMaxGenerated);
+      c_.fail(at, "divisions", msg);
+    }
+  }
   std::pair<int, int> pair_of_ints(const YAML::Node& n, const std::string& key) {
     const YAML::Node v = c_.required(n, key);
     if (!v.IsSequence() || v.size() != 2) c_.fail(v, key, "expected two integers [n1, n2]");
-    return {static_cast<int>(c_.as_integer(v[0], key)), static_cast<int>(c_.as_integer(v[1], key))};
+    return {c_.as_count(v[0], key, kMaxDivisions), c_.as_count(v[1], key, kMaxDivisions)};
   }
   std::vector<Vec3> points(const YAML::Node& n, const std::string& key, bool required = true) {
     const YAML::Node v = n[key];
@@ -319,7 +336,7 @@ class ModelFileReader {
     s.id = id_or_index(n);
     s.from = c_.vec3(n, "from", ranges::coordinate);
     s.to = c_.vec3(n, "to", ranges::coordinate);
-    s.elements = static_cast<int>(c_.integer(n, "elements"));
+    s.elements = c_.as_count(c_.required(n, "elements"), "elements", kMaxDivisions);
     s.section = c_.text(n, "section");
     if (n["orientation"].IsDefined()) s.orientation = c_.vec3(n, "orientation");
     s.theory = theory(n);
@@ -338,6 +355,7 @@ class ModelFileReader {
     if (corners.size() != 4) c_.fail(n["corners"], "corners", "a patch has 4 corners");
     std::copy(corners.begin(), corners.end(), s.corners.begin());
     std::tie(s.nx, s.ny) = pair_of_ints(n, "divisions");
+    bounded_mesh(n["divisions"], static_cast<double>(s.nx) * s.ny);
     s.quadratic = quadratic(n);
     s.section = c_.text(n, "section");
     s.mass = mass_kind(n);
@@ -362,9 +380,10 @@ class ModelFileReader {
     s.material = c_.text(n, "material");
     const YAML::Node d = c_.required(n, "divisions");
     if (!d.IsSequence() || d.size() != 3) c_.fail(d, "divisions", "expected [along, across width, across height]");
-    s.n_along = static_cast<int>(c_.as_integer(d[0], "divisions"));
-    s.n_width = static_cast<int>(c_.as_integer(d[1], "divisions"));
-    s.n_height = static_cast<int>(c_.as_integer(d[2], "divisions"));
+    s.n_along = c_.as_count(d[0], "divisions", kMaxDivisions);
+    s.n_width = c_.as_count(d[1], "divisions", kMaxDivisions);
+    s.n_height = c_.as_count(d[2], "divisions", kMaxDivisions);
+    bounded_mesh(d, 2.0 * s.n_along * (s.n_width + s.n_height));
     s.quadratic = quadratic(n);
     s.end_plates = c_.boolean_or(n, "end_plates", true);
     s.end_couplings = c_.boolean_or(n, "end_couplings", true);
@@ -397,7 +416,9 @@ class ModelFileReader {
     }
     s.ring = c_.boolean_or(n, "ring", true);
     s.joints = points(n, "joints");
-    s.elements_per_member = c_.integer_or(n, "elements_per_member", s.elements_per_member);
+    if (n["elements_per_member"].IsDefined()) {
+      s.elements_per_member = c_.as_count(n["elements_per_member"], "elements_per_member", kMaxDivisions);
+    }
     s.joint_set = c_.text_or(n, "joint_set", s.joint_set);
     generated(n, s.id, [&] { fe::build_fixed_frame(m_, s); });
   }
@@ -412,7 +433,9 @@ class ModelFileReader {
     std::tie(s.bays_x, s.bays_y) = pair_of_ints(n, "bays");
     s.section = c_.text(n, "section");
     s.joints = points(n, "joints");
-    s.elements_per_member = c_.integer_or(n, "elements_per_member", s.elements_per_member);
+    if (n["elements_per_member"].IsDefined()) {
+      s.elements_per_member = c_.as_count(n["elements_per_member"], "elements_per_member", kMaxDivisions);
+    }
     s.joint_set = c_.text_or(n, "joint_set", s.joint_set);
     generated(n, s.id, [&] { fe::build_carrying_frame(m_, s); });
   }

@@ -51,6 +51,17 @@ Eigen::Vector3d YamlContext::as_vec3(const YAML::Node& v, const std::string& key
   return {as_number(v[0], key), as_number(v[1], key), as_number(v[2], key)};
 }
 
+int YamlContext::as_count(const YAML::Node& v, const std::string& key, long max) const {
+  const long x = as_integer(v, key);
+  if (x < 1) fail(v, key, "expected a count of at least 1, got " + std::to_string(x));
+  if (x > max) {
+    fail(v, key,
+         std::to_string(x) + " is more than the " + std::to_string(max) +
+             " allowed: a finer mesh than any rig frame needs, and more than a machine can solve");
+  }
+  return static_cast<int>(x);
+}
+
 double YamlContext::number(const YAML::Node& map, const std::string& key) const {
   return as_number(required(map, key), key);
 }

@@ -48,6 +48,9 @@ class YamlContext {
   // Conversions of a value node (not a mapping entry); `key` names it in errors.
   double as_number(const YAML::Node& v, const std::string& key) const;
   long as_integer(const YAML::Node& v, const std::string& key) const;
+  // An integer from 1 to `max` (a mesher's division count): checked before
+  // it is narrowed to int, so 4294967297 is refused, not meshed as 1.
+  int as_count(const YAML::Node& v, const std::string& key, long max) const;
   Eigen::Vector3d as_vec3(const YAML::Node& v, const std::string& key) const;
   double as_number(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const;
   Eigen::Vector3d as_vec3(const YAML::Node& v, const std::string& key, const PhysicalRange& r) const;
