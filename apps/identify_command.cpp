@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
+#include "apps/measured_model.hpp"
 #include "identify/identification.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mass_record.hpp"
@@ -125,6 +126,7 @@ int run(const IdentifyArgs& a) {
   std::vector<std::filesystem::path> paths(a.data.begin(), a.data.end());
   const io::MeasurementSets data = io::read_measurement_sets(paths, model.geometry.rod_count());
   if (!a.quiet) std::fprintf(stderr, "identify: %zu set(s) read\n", data.sets.size());
+  for (const auto& set : data.sets) print_record_warnings(set.records);
 
   report::IdentificationReport report;
   report.rig = model.name;

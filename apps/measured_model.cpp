@@ -43,7 +43,16 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
     for (auto& r : s.records) mm.records.push_back(std::move(r));
   }
   if (!quiet) std::fprintf(stderr, "%s: %zu histories read\n", command, mm.records.size());
+  print_record_warnings(mm.records);
   return mm;
+}
+
+void print_record_warnings(const std::vector<rig::Record>& records) {
+  for (const auto& r : records) {
+    for (const auto& w : r.provenance.warnings) {
+      std::fprintf(stderr, "rigflex: warning: %s: %s\n", r.provenance.file.c_str(), w.c_str());
+    }
+  }
 }
 
 void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e) {

@@ -30,6 +30,11 @@ MeasuredModel read_measured_model(const std::string& rig_file, const std::vector
 // InputError that names mm's rig and effects files (io::integration_error).
 int run_on_measured_model(const MeasuredModel& mm, const std::function<int()>& work);
 
+// The readers' warnings (a clipped or stuck channel) on stderr, one line each
+// ("rigflex: warning: FILE: line N: ..."), even with --quiet: they are about
+// the data, not progress.
+void print_record_warnings(const std::vector<rig::Record>& records);
+
 // The InputError for a record error of one of mm's records (its file and line).
 [[noreturn]] void rethrow_record_error(const MeasuredModel& mm, const rig::RecordError& e);
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -45,6 +46,7 @@ class MeasurementFileReader {
     const Layout layout = read_header(header);
     read_samples(header, layout, h);
     check_columns(header, layout, h);
+    h.provenance.warnings = channel_warnings(header, layout, h);
     h.provenance.file = file_;
     // Sample k is on line header + 2 + k (1-based): the reader refuses blank lines among the samples.
     h.provenance.first_sample_line = static_cast<int>(header + 2);
@@ -192,6 +194,40 @@ class MeasurementFileReader {
           "the rod's swing about its encoder axis, and so the body's motion,");
     check(h.beta, layout.beta, kMaxAngle, "rad", ": angles are in rad, not degrees",
           "the rod's swing across its encoder axis, and so the body's motion,");
+  }
+
+  // A channel that holds one value for a long stretch: at its extreme a
+  // sensor clipped at its range (for 0.25 s or more: a swing's turning
+  // point, quantized to 17 bits, stays on one count for about 0.05 s), else
+  // stuck (for 1 s or more). Doubtful, not wrong - a warning.
+  std::vector<std::string> channel_warnings(size_t header, const Layout& layout, const rig::Record& h) const {
+    std::vector<std::string> out;
+    const Eigen::Index n = h.t.size();
+    if (n < 10) return out;
+    const double dt = (h.t(n - 1) - h.t(0)) / static_cast<double>(n - 1);
+    auto look = [&](const Eigen::MatrixXd& x, const std::vector<size_t>& columns) {
+      for (Eigen::Index k = 0; k < x.cols(); ++k) {
+        Eigen::Index best = 0, best_start = 0;
+        for (Eigen::Index i = 0, start = 0; i < n; ++i) {
+          if (i > 0 && x(i, k) != x(i - 1, k)) start = i;
+          if (i - start + 1 > best) best = i - start + 1, best_start = start;
+        }
+        const double v = x(best_start, k), seconds = static_cast<double>(best - 1) * dt;
+        const bool extreme = v == x.col(k).maxCoeff() || v == x.col(k).minCoeff();
+        if (!(seconds >= (extreme ? 0.25 : 1.0))) continue;
+        const std::string name(layout.names[columns[static_cast<size_t>(k)]]);
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "line %zu: %s holds %s for %.3g s (%ld samples)%s",
+                      header + 2 + static_cast<size_t>(best_start), name.c_str(), number_text(v).c_str(), seconds,
+                      static_cast<long>(best),
+                      extreme ? ", at its extreme: clipped by the sensor's range?" : ": a stuck sensor?");
+        out.emplace_back(msg);
+      }
+    };
+    look(h.force, layout.force);
+    look(h.alpha, layout.alpha);
+    look(h.beta, layout.beta);
+    return out;
   }
 
   void read_samples(size_t header, const Layout& layout, rig::Record& h) const {

@@ -28,6 +28,9 @@ struct RecordProvenance {
   std::string file;           // the file read ("" when simulated)
   int first_sample_line = 0;  // 1-based line of sample 0 in `file`; 0 when not read from a file
   RecordComments comments;    // in file order; written back in that order
+  // What the reader found doubtful but not wrong ("line 120: F1 sits at its
+  // maximum ... (clipped?)"): for the command line to show, never fatal.
+  std::vector<std::string> warnings;
 
   // The 1-based line of `sample` (0-based) in `file`; 0 when the record was
   // not read from a file or the sample is unknown (< 0). The reader refuses

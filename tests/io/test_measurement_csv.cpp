@@ -563,3 +563,48 @@ TEST(RecordProvenance, SampleRateFromTheTimeStampsWithoutAComment) {
 
 }  // namespace
 }  // namespace rigflex
+
+namespace rigflex {
+namespace {
+
+// Three rods swinging for 3 s at 100 Hz; `hold(k, value)` may replace
+// channel `column` (0: t, 1..3: F, then alpha/beta pairs) of sample k.
+std::string swing_csv(const std::function<void(int, int, double&)>& hold) {
+  std::ostringstream s;
+  s << "t,F1,F2,F3,alpha1,beta1,alpha2,beta2,alpha3,beta3\n";
+  for (int k = 0; k <= 300; ++k) {
+    const double t = 0.01 * k, w = 2 * M_PI * 0.5;
+    double v[10] = {t,
+                    600 + 2 * std::cos(2 * w * t),
+                    610 + 2 * std::cos(2 * w * t + 1),
+                    590 + std::sin(2 * w * t),
+                    0.02 * std::sin(w * t),
+                    0.01 * std::cos(w * t),
+                    0.02 * std::sin(w * t + 1),
+                    0.01 * std::cos(w * t + 1),
+                    0.02 * std::sin(w * t + 2),
+                    0.01 * std::cos(w * t + 2)};
+    for (int c = 0; c < 10; ++c) hold(k, c, v[c]);
+    for (int c = 0; c < 10; ++c) s << (c ? "," : "") << v[c];
+    s << "\n";
+  }
+  return s.str();
+}
+
+TEST(TimeHistoryCsv, AChannelStuckForASecondIsReadWithAWarning) {
+  const std::string text = swing_csv([](int k, int c, double& v) {
+    if (c == 5 && k >= 100 && k <= 220) v = 0.0042;  // beta1 stuck mid-swing from t = 1.0 s to 2.2 s
+  });
+  std::istringstream in(text);
+  const Record r = io::parse_record_csv(in, "stuck.csv");
+  ASSERT_EQ(r.provenance.warnings.size(), 1u);
+  EXPECT_EQ(r.provenance.warnings[0], "line 102: beta1 holds 0.0042 for 1.2 s (121 samples): a stuck sensor?");
+}
+
+TEST(TimeHistoryCsv, ALiveRecordHasNoWarning) {
+  std::istringstream in(swing_csv([](int, int, double&) {}));
+  EXPECT_TRUE(io::parse_record_csv(in, "live.csv").provenance.warnings.empty());
+}
+
+}  // namespace
+}  // namespace rigflex
