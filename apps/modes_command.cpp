@@ -41,20 +41,14 @@ std::vector<std::string> elements_at(const fe::Model& model, const std::vector<f
   return out;
 }
 
-std::string describe(const reduction::ZeroFrequencyMode& z, const fe::Model& model, const fe::DofMap& dofs,
-                     const Eigen::MatrixXd& vectors) {
+std::string describe(const reduction::ZeroFrequencyMode& z, const fe::Model& model) {
   std::string s = "mode " + std::to_string(z.mode + 1) + " moves ";
   for (size_t i = 0; i < z.largest.size(); ++i) s += (i ? ", " : "") + z.largest[i];
   if (z.moving > static_cast<Eigen::Index>(z.largest.size())) {
     s += " and " + std::to_string(z.moving - static_cast<Eigen::Index>(z.largest.size())) + " more DOFs";
   }
-  // The nodes of its largest motions, and the elements they belong to.
-  std::vector<fe::NodeId> nodes;
-  const Eigen::VectorXd amp = vectors.col(z.mode).cwiseAbs();
-  for (Eigen::Index i = 0; i < amp.size(); ++i) {
-    if (amp(i) > 0.1 * amp.maxCoeff()) nodes.push_back(dofs.node[static_cast<size_t>(i)]);
-  }
-  const std::vector<std::string> parts = elements_at(model, nodes);
+  // The elements its moving nodes belong to.
+  const std::vector<std::string> parts = elements_at(model, z.nodes);
   if (!parts.empty()) {
     s += "; in ";
     for (size_t i = 0; i < std::min<size_t>(parts.size(), 6); ++i) s += (i ? ", " : "") + parts[i];
@@ -110,7 +104,7 @@ int run(const ModesArgs& args) {
                  "a part that moves without straining anything:\n",
                  args.model.c_str(), zero.size());
     for (const auto& z : zero) {
-      std::fprintf(stderr, "  %s\n", describe(z, m.model, a.system.dofs, a.result.vectors).c_str());
+      std::fprintf(stderr, "  %s\n", describe(z, m.model).c_str());
     }
     std::fprintf(stderr,
                  "add supports, connections or stiffness to these DOFs, or pass --allow-mechanism to keep "
@@ -122,7 +116,7 @@ int run(const ModesArgs& args) {
                 supported ? "a mechanism, kept (--allow-mechanism)" : "rigid-body motions of the free model");
   }
   if (!a.result.converged) std::fprintf(stderr, "rigflex: warning: %s\n", a.result.message.c_str());
-  if (!args.out.empty() && a.result.converged_count > 0) {
+  if (folder && a.result.converged_count > 0) {
     const std::filesystem::path dir(args.out);
     io::FileBatch batch;
     nlohmann::json j = report::modes_json(m.name, a);

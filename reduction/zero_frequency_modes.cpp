@@ -52,6 +52,8 @@ std::vector<ZeroFrequencyMode> zero_frequency_modes(const fe::Model& model, cons
       if (!(amp(i) > 0.1 * top)) break;
       ++z.moving;
       if (z.largest.size() < kListed) z.largest.push_back(a.system.dofs.describe(i));
+      const fe::NodeId node = a.system.dofs.node[static_cast<size_t>(i)];
+      if (std::find(z.nodes.begin(), z.nodes.end(), node) == z.nodes.end()) z.nodes.push_back(node);
     }
     out.push_back(std::move(z));
   }

@@ -23,6 +23,7 @@ struct ZeroFrequencyMode {
   // with translations).
   std::vector<std::string> largest;
   Eigen::Index moving = 0;
+  std::vector<fe::NodeId> nodes;  // the nodes of those moving DOFs, each once, largest motion first
 };
 
 inline constexpr size_t kListed = 8;

@@ -74,6 +74,7 @@ TEST(ZeroFrequencyModes, APinnedBeamIsAMechanismOfThreeRotations) {
   ASSERT_NE(spin, z.end());
   EXPECT_EQ(spin->moving, 5);  // the five nodes' RX
   EXPECT_EQ(spin->largest.size(), 5u);
+  EXPECT_EQ(spin->nodes.size(), 5u);  // each node once
 }
 
 }  // namespace
