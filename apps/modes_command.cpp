@@ -7,7 +7,9 @@
 #include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/work_estimate.hpp"
 #include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
 #include "io/model_reader.hpp"
 #include "io/output_folder.hpp"
 #include "io/vtk_modes.hpp"
@@ -26,6 +28,7 @@ struct ModesArgs {
   int block = 0;
   bool quiet = false;
   bool allow_mechanism = false;
+  std::optional<double> max_memory_gib;
 };
 
 // The elements that hold any of `nodes`, for naming the part a mechanism is in.
@@ -75,7 +78,17 @@ int run(const ModesArgs& args) {
   std::optional<io::OutputFolder> folder;
   if (!args.out.empty()) folder.emplace(args.out, "modes");
   const io::ModelFile m = io::read_model(args.model);
+  const double limit = memory_limit_bytes(args.max_memory_gib);
+  const fe::AssemblySize size = fe::assembly_size(m.model);
+  if (const std::string refusal = assembly_refusal(size, limit); !refusal.empty()) {
+    throw io::InputError(args.model, 0, "", refusal + "; nothing written");
+  }
+  if (!args.quiet) std::fprintf(stderr, "%s\n", assembly_line(size).c_str());
   linalg::EigenOptions opt;
+  opt.max_factor_bytes = limit;
+  if (!args.quiet) {
+    opt.analyzed = [](const linalg::FactorStatistics& s) { std::fprintf(stderr, "%s\n", factor_line(s).c_str()); };
+  }
   opt.count = args.count;
   opt.block_size = args.block;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
@@ -85,7 +98,14 @@ int run(const ModesArgs& args) {
       std::fflush(stderr);
     };
   const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt);
-  if (!args.quiet) std::fprintf(stderr, "\n");
+  if (!args.quiet) {
+    std::fprintf(stderr, "\nfactorization %.2f s, Lanczos %.2f s\n", a.result.factor_seconds,
+                 a.result.iteration_seconds);
+  }
+  if (a.result.over_memory_limit) {
+    throw io::InputError(args.model, 0, "",
+                         a.result.message + " (--max-memory, default the machine's memory); nothing written");
+  }
   std::printf("model: %s, %ld free DOFs, mass %.6g kg\n", m.name.c_str(), static_cast<long>(a.system.dofs.free_count()),
               a.mass.mass);
   if (!a.mechanism.empty()) {
@@ -145,6 +165,10 @@ void add_modes_command(CLI::App& app, int& exit_code) {
                   "Lanczos block size; 0 (default): chosen from the fill of the factor, see docs/eigen-solver.md")
       ->check(non_negative());
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
+  cmd->add_option("--max-memory", args->max_memory_gib,
+                  "GiB the assembly and the factor may use (default: the machine's memory); a larger model is "
+                  "refused before the work")
+      ->check(positive());
   cmd->add_flag("--allow-mechanism", args->allow_mechanism,
                 "keep zero-frequency modes of a supported model (otherwise an error, exit 2)");
   cmd->callback([args, &exit_code] { exit_code = run(*args); });

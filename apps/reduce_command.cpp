@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "apps/commands.hpp"
+#include "apps/work_estimate.hpp"
 #include "fe/error.hpp"
 #include "io/input_error.hpp"
 #include "io/model_reader.hpp"
@@ -30,6 +31,7 @@ struct ReduceArgs {
   int check_modes = 10;
   std::string out;
   bool quiet = false;
+  std::optional<double> max_memory_gib;
 };
 
 reduction::FrameReductionOptions to_options(const ReduceArgs& a) {
@@ -85,6 +87,11 @@ void print_summary(const reduction::ReducedFrame& r) {
 int run(const ReduceArgs& args) {
   io::OutputFolder folder(args.out, "reduce");
   const io::ModelFile m = io::read_model(args.model);
+  const fe::AssemblySize size = fe::assembly_size(m.model);
+  if (const std::string refusal = assembly_refusal(size, memory_limit_bytes(args.max_memory_gib)); !refusal.empty()) {
+    throw io::InputError(args.model, 0, "", refusal + "; nothing written");
+  }
+  if (!args.quiet) std::fprintf(stderr, "reduce: %s\n", assembly_line(size).c_str());
   const reduction::FrameReductionOptions o = to_options(args);
   reduction::ReducedFrame r;
   try {
@@ -133,6 +140,10 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--check-modes", a->check_modes, "elastic modes of the full model to compare")->check(positive());
   cmd->add_option("--out", a->out, "folder for reduced.json, reduced.mat and the .mtx files")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
+  cmd->add_option("--max-memory", a->max_memory_gib,
+                  "GiB the assembly may use (default: the machine's memory); a larger model is refused before the "
+                  "work")
+      ->check(positive());
   cmd->callback([a, &exit_code] { exit_code = run(*a); });
 }
 

@@ -1,13 +1,30 @@
 #include "fe/element_loop.hpp"
 
 #include <map>
+#include <string>
 
 #include "fe/beam_element.hpp"
 #include "fe/discrete_elements.hpp"
+#include "fe/error.hpp"
 #include "fe/shell_types.hpp"
 
 namespace rigflex::fe {
 namespace {
+
+// Inputs in their physical ranges can still make an element whose matrices
+// overflow or divide by zero (a shell whose corners lie nearly on a line);
+// such a matrix would spread NaN through the whole solve, so it is refused
+// here, named, before it is assembled.
+void require_finite(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, const char* kind, const std::string& id) {
+  const bool k_ok = K.allFinite(), m_ok = M.allFinite();
+  if (k_ok && m_ok) return;
+  throw ModelError({kind, id, ""}, std::string(kind) + " '" + id + "': its " +
+                                       (k_ok   ? "mass matrix is"
+                                        : m_ok ? "stiffness matrix is"
+                                               : "stiffness and mass matrices are") +
+                                       " not finite (degenerate geometry, or values at the edge of their range "
+                                       "multiplied past a double)");
+}
 
 std::vector<long> node_dofs(const Model& model, const std::vector<NodeId>& ids) {
   std::vector<long> dofs;
@@ -38,6 +55,7 @@ void visit_beams(const Model& model, const ElementVisitor& visit) {
     p.mass = b.mass;
     p.rotary_inertia = b.rotary_inertia;
     const ElementMatrices e = beam_matrices(model.position(b.nodes[0]), model.position(b.nodes[1]), b.orientation, p);
+    require_finite(e.K, e.M, "beam", b.id);
     visit(node_dofs(model, {b.nodes[0], b.nodes[1]}), e.K, e.M);
   }
 }
@@ -51,17 +69,23 @@ void visit_shells(const Model& model, const ElementVisitor& visit) {
     x.clear();
     for (NodeId id : s.nodes) x.push_back(model.position(id));
     const ElementMatrices e = shell_type(s).matrices(x, p);
+    require_finite(e.K, e.M, "shell", s.id);
     visit(node_dofs(model, s.nodes), e.K, e.M);
   }
 }
 
 void visit_discrete(const Model& model, const ElementVisitor& visit) {
   const Eigen::MatrixXd zero6 = Eigen::MatrixXd::Zero(6, 6);
-  for (const PointMass& p : model.point_masses) visit(node_dofs(model, {p.node}), zero6, point_mass_matrix(p));
+  for (const PointMass& p : model.point_masses) {
+    const Eigen::MatrixXd m = point_mass_matrix(p);
+    require_finite(zero6, m, "point_mass", p.id);
+    visit(node_dofs(model, {p.node}), zero6, m);
+  }
   for (const Spring& s : model.springs) {
     const Vec3& xa = model.position(s.node);
     const Vec3 xb = s.other ? model.position(*s.other) : xa;
     const Eigen::Matrix<double, 6, 6> k = spring_stiffness(s, xa, xb);
+    require_finite(k, zero6, "spring", s.id);
     if (!s.other) {
       visit(node_dofs(model, {s.node}), k, zero6);
       continue;
@@ -73,6 +97,10 @@ void visit_discrete(const Model& model, const ElementVisitor& visit) {
 }
 
 }  // namespace
+
+void check_element_matrices(const Model& model) {
+  for_each_element(model, [](const std::vector<long>&, const Eigen::MatrixXd&, const Eigen::MatrixXd&) {});
+}
 
 void for_each_element(const Model& model, const ElementVisitor& visit) {
   visit_beams(model, visit);

@@ -12,7 +12,12 @@ namespace rigflex::fe {
 using ElementVisitor = std::function<void(const std::vector<long>& full_dofs, const Eigen::MatrixXd& K,
                                           const Eigen::MatrixXd& M)>;
 
-// The model must be valid (Model::validate).
+// The model must be valid (Model::validate). Throws ModelError naming the
+// element whose matrices are not finite.
 void for_each_element(const Model& model, const ElementVisitor& visit);
+
+// Computes every element's matrices and throws as for_each_element does: for
+// readers, which can still name the line that made the element.
+void check_element_matrices(const Model& model);
 
 }  // namespace rigflex::fe

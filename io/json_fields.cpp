@@ -123,7 +123,10 @@ void JsonFields::fail(const JsonNode& at, const std::string& message) const {
 
 void JsonFields::expect_object(const JsonNode& n, std::initializer_list<const char*> allowed) const {
   if (!n.value->is_object()) fail(n, std::string("expected an object, found ") + n.value->type_name());
-  for (const auto& [key, value] : n.value->items()) {
+  for (const auto& item : n.value->items()) {
+    // Named, not a structured binding: clang 14 cannot capture one in a lambda.
+    const std::string& key = item.key();
+    const auto& value = item.value();
     if (std::find_if(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }) != allowed.end())
       continue;
     std::string names;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "fe/dof.hpp"
+#include "fe/element_loop.hpp"
 #include "fe/error.hpp"
 #include "fe/meshers.hpp"
 #include "fe/shell_types.hpp"
@@ -537,6 +538,7 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   try {
     ModelFileReader(ctx, out.model, src).read(root);
     out.model.validate();
+    fe::check_element_matrices(out.model);
   } catch (const fe::ModelError& e) {
     const YAML::Node at = src.find(e.where());
     throw InputError(source, at.IsDefined() ? YamlContext::line_of(at) : 0,

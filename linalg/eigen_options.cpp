@@ -35,6 +35,8 @@ void EigenOptions::validate(Eigen::Index n) const {
               std::to_string(count + least_block) + "), got " + std::to_string(subspace));
   require(max_restarts >= 0, "max_restarts must not be negative");
   require(dense_threshold >= 0, "dense_threshold must not be negative");
+  require(std::isfinite(max_factor_bytes) && max_factor_bytes >= 0.0,
+          "max_factor_bytes must be 0 (no limit) or a positive number of bytes");
 }
 
 int EigenOptions::resolved_block(Eigen::Index n, double factor_nnz) const {

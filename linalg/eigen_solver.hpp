@@ -56,6 +56,13 @@ struct EigenOptions {
   EigenMethod method = EigenMethod::automatic;
   Eigen::Index dense_threshold = 200;
   std::function<void(const EigenProgress&)> progress;  // optional
+  // The factor of K - sigma M may hold at most this many bytes (0: no
+  // limit); a larger one is refused after the symbolic analysis, before any
+  // numeric work (EigenResult::over_memory_limit).
+  double max_factor_bytes = 0;
+  // Called after the analysis with the factor's predicted size and flops;
+  // optional.
+  std::function<void(const FactorStatistics&)> analyzed;
 
   // Throws std::invalid_argument naming the offending option.
   void validate(Eigen::Index n) const;
@@ -99,6 +106,7 @@ struct EigenResult {
   long operator_applications = 0;  // applications of (K - sigma M)^-1 M to a vector
   double factor_seconds = 0, iteration_seconds = 0;
   std::vector<Eigen::Index> mechanism_dofs;  // filled when the shifted matrix was singular
+  bool over_memory_limit = false;            // refused by EigenOptions::max_factor_bytes; message says why
 
   // sqrt(max(lambda, 0)) / (2 pi): rigid-body modes whose lambda rounds to a
   // tiny negative value report 0 Hz.

@@ -137,6 +137,8 @@ EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& op
   }
   const auto start = std::chrono::steady_clock::now();
   auto factor = std::make_unique<SparseCholesky>();
+  factor->set_memory_limit(options.max_factor_bytes);
+  if (options.analyzed) factor->on_analysis(options.analyzed);
   const PencilFactorization pencil = factorize_pencil(K, M, options.shift, *factor);
   const double factor_seconds = seconds_since(start);
   if (!pencil.ok) {
@@ -145,6 +147,7 @@ EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& op
     r.shift = pencil.shift;
     r.message = pencil.message;
     r.mechanism_dofs = pencil.mechanism_dofs;
+    r.over_memory_limit = pencil.status.over_memory_limit;
     r.factor_seconds = factor_seconds;
     return r;
   }

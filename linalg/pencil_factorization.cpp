@@ -59,6 +59,10 @@ PencilFactorization factorize_pencil(const SpMat& K, const SpMat& M, std::option
   const bool user_shift = shift.has_value();
   out.shift = user_shift ? *shift : default_shift(K, M);
   out.status = factor.factorize_shifted(K, M, out.shift);
+  if (out.status.over_memory_limit) {
+    out.message = out.status.message;
+    return out;
+  }
   if (out.status.ok && out.status.min_relative_pivot >= kTinyPivot) {
     out.ok = true;
     return out;

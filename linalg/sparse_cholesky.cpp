@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "linalg/block_kernels.hpp"
@@ -208,6 +209,8 @@ struct SparseCholesky::Impl {
   bool factorized = false;
   std::optional<double> shift;
   FactorStatistics stats;
+  double memory_limit = 0;
+  std::function<void(const FactorStatistics&)> analysis_callback;
 };
 
 void SparseCholesky::Impl::analyze(const std::vector<Term>& terms, Eigen::Index size) {
@@ -238,7 +241,13 @@ void SparseCholesky::Impl::analyze(const std::vector<Term>& terms, Eigen::Index 
   ++stats.analyses;
   stats.factor_nnz = common.lnz;
   stats.factor_flops = common.fl;
+  // A supernodal analysis sizes the factor exactly; a simplicial one counts
+  // L's nonzeros, each a value and a row index.
+  stats.factor_bytes_estimate =
+      L->is_super ? factor_bytes()
+                  : common.lnz * (sizeof(double) + sizeof(Long)) + 4.0 * static_cast<double>(n) * sizeof(Long);
   stats.analyze_seconds += seconds_since(start);
+  if (analysis_callback) analysis_callback(stats);
 }
 
 std::vector<Long> SparseCholesky::Impl::inverse_permutation() const {
@@ -360,6 +369,14 @@ FactorStatus SparseCholesky::Impl::factorize(const std::vector<Term>& terms) {
     analyze(terms, n);
     S = lower(terms);
   }
+  if (memory_limit > 0 && stats.factor_bytes_estimate > memory_limit) {
+    FactorStatus status;
+    status.over_memory_limit = true;
+    status.message = "the factor would need " + std::to_string(std::lround(stats.factor_bytes_estimate / 1048576.0)) +
+                     " MiB (" + std::to_string(std::llround(stats.factor_nnz)) + " nonzeros), above the limit of " +
+                     std::to_string(std::lround(memory_limit / 1048576.0)) + " MiB";
+    return status;
+  }
   Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n);
   for (const Term& t : terms) diagonal += t.scale * t.matrix->diagonal();
   int done = 0;
@@ -391,6 +408,17 @@ SparseCholesky::SparseCholesky(FactorKind kind) : impl_(std::make_unique<Impl>(k
 SparseCholesky::~SparseCholesky() = default;
 SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
 SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+
+void SparseCholesky::set_memory_limit(double bytes) {
+  if (!(bytes >= 0)) throw std::invalid_argument("SparseCholesky: the memory limit must be >= 0 bytes");
+  if (!impl_) impl_ = std::make_unique<Impl>(FactorKind::automatic);
+  impl_->memory_limit = bytes;
+}
+
+void SparseCholesky::on_analysis(std::function<void(const FactorStatistics&)> callback) {
+  if (!impl_) impl_ = std::make_unique<Impl>(FactorKind::automatic);
+  impl_->analysis_callback = std::move(callback);
+}
 
 void SparseCholesky::analyze(const SpMat& pattern) {
   if (!impl_) impl_ = std::make_unique<Impl>(FactorKind::automatic);

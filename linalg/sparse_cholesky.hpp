@@ -5,6 +5,7 @@
 // that pattern. One object serves many solves ("factor once, solve many").
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +28,8 @@ struct FactorStatus {
   // (~1e-15) when A is singular to working precision. 0 if the
   // factorization failed, or if A has a zero diagonal entry.
   double min_relative_pivot = 0.0;
+  // Not attempted: the analysis put the factor above set_memory_limit.
+  bool over_memory_limit = false;
 };
 
 // Which CHOLMOD factorization to use. automatic lets CHOLMOD choose by the
@@ -42,6 +45,10 @@ struct FactorStatistics {
   double factor_nnz = 0;    // nonzeros of L (from the analysis)
   double factor_flops = 0;  // flop count of one numeric factorization
   double factor_bytes = 0;  // memory held by L's values and indices
+  // factor_bytes as the last analysis predicts it, before any numeric
+  // factorization (exact for a supernodal factor, within a few percent for
+  // a simplicial one).
+  double factor_bytes_estimate = 0;
   double analyze_seconds = 0;
   double factorize_seconds = 0;
   double solve_seconds = 0;
@@ -91,6 +98,15 @@ class SparseCholesky {
       return solve(Eigen::MatrixXd(B));
     }
   }
+
+  // A numeric factorization whose analysis predicts more than `bytes` of
+  // factor is not attempted: its status says so (over_memory_limit). 0: no
+  // limit.
+  void set_memory_limit(double bytes);
+  // Called after every symbolic analysis with the statistics it gives (the
+  // factor's nonzeros, flops and bytes): the last moment a caller can report
+  // the cost before paying it.
+  void on_analysis(std::function<void(const FactorStatistics&)> callback);
 
   bool analyzed() const;
   bool factorized() const;  // last factorization succeeded

@@ -15,6 +15,10 @@ packages=(
 # node/npm already installed (e.g. from NodeSource) is used as it is: Debian's
 # npm package would conflict with it.
 if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
+# More packages on request: .ci/run's sanitizer and fuzzing pass adds clang
+# and its runtimes (EXTRA_PACKAGES="clang libclang-rt-14-dev").
+read -r -a extra <<< "${EXTRA_PACKAGES:-}"
+packages+=("${extra[@]}")
 
 missing=()
 for p in "${packages[@]}"; do

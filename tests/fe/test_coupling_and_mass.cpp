@@ -4,6 +4,8 @@
 #include <Eigen/SparseCholesky>
 
 #include "fe/assembly.hpp"
+#include "fe/element_loop.hpp"
+#include "fe/error.hpp"
 #include "fe/mass_properties.hpp"
 #include "fe/meshers.hpp"
 #include "support/frame_models.hpp"
@@ -112,6 +114,34 @@ TEST(MassProperties, ProductsOfInertiaUseTheNegativeIntegralConvention) {
   EXPECT_NEAR(p.inertia(0, 1), -2.0, 1e-13);
   EXPECT_NEAR(p.inertia(0, 0), 1 * (1 + 1) + 1 * (1 + 1) + 2 * 1, 1e-13);
   EXPECT_NEAR(p.inertia(2, 2), 4.0, 1e-13);
+}
+
+// A model built in code skips the reader's physical ranges: a modulus at
+// the top of the double range overflows a short beam's bending stiffness
+// (12 E I / L^3). Assembly refuses it, naming the beam, instead of
+// spreading infinities into the solve.
+TEST(ElementMatrices, ANonFiniteStiffnessIsRefusedNamingTheElement) {
+  fe::Model m = test::steel_model();
+  m.materials["steel"].E = 1.0e308;
+  m.beam_sections["tube"] = test::tube_section("tube", 0.1, 0.005);
+  fe::NodeMerger merger(m);
+  const auto ids = test::member(m, merger, "post", Vec3(0, 0, 0), Vec3(0, 0, 0.01), 1, "tube");
+  test::clamp(m, "base", ids.front());
+  m.validate();
+  try {
+    fe::check_element_matrices(m);
+    FAIL() << "no error";
+  } catch (const fe::ModelError& e) {
+    EXPECT_EQ(e.where().kind, "beam");
+    EXPECT_EQ(e.where().id, m.beams.front().id);
+    // The shear-flexibility ratio 12 E I / (k G A L^2) enters the
+    // Timoshenko mass matrix too: both are named.
+    EXPECT_NE(std::string(e.what()).find("stiffness and mass matrices are not finite"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)fe::assemble(m), fe::ModelError);
+  // The same beam of steel passes.
+  m.materials["steel"].E = 2.1e11;
+  EXPECT_NO_THROW(fe::check_element_matrices(m));
 }
 
 }  // namespace

@@ -6,7 +6,9 @@
 
 // GCC 12 reports false -Wmaybe-uninitialized warnings inside Eigen 3.4's
 // self-adjoint products, instantiated by the eigen solvers used here.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 #include <gtest/gtest.h>
 

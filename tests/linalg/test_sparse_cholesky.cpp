@@ -122,6 +122,52 @@ TEST_P(SparseCholeskyKinds, MatrixOutsideTheAnalyzedPatternIsReanalyzed) {
   EXPECT_LE((shifted * chol.solve(b) - b).norm() / b.norm(), solver_agreement(shifted));
 }
 
+// The analysis predicts the factor's memory before the numeric work: the
+// prediction the commands print and hold to --max-memory. Exact for a
+// supernodal factor (the symbolic supernodes fix its size); for a
+// simplicial one L's nonzero count is exact, and the allocation that
+// CHOLMOD then makes is at most a few percent larger (it keeps some slack
+// per column): 10 % bounds both ways.
+TEST_P(SparseCholeskyKinds, TheAnalysisPredictsTheFactorsMemory) {
+  const testing::Pencil p = grid_laplacian(40, 40);  // K + M: positive definite
+  SparseCholesky chol(GetParam());
+  FactorStatistics seen;
+  int calls = 0;
+  chol.on_analysis([&](const FactorStatistics& s) {
+    seen = s;
+    ++calls;
+  });
+  ASSERT_TRUE(chol.factorize_shifted(p.K, p.M, -1.0).ok);
+  EXPECT_EQ(calls, 1);
+  EXPECT_GT(seen.factor_bytes_estimate, 0.0);
+  EXPECT_EQ(seen.factorizations, 0) << "reported before the numeric factorization";
+  const double actual = chol.statistics().factor_bytes;
+  EXPECT_NEAR(seen.factor_bytes_estimate / actual, 1.0, 0.10) << seen.factor_bytes_estimate << " vs " << actual;
+}
+
+// Over the limit, nothing numeric is attempted and the status says why.
+TEST_P(SparseCholeskyKinds, AFactorAboveTheMemoryLimitIsNotAttempted) {
+  const testing::Pencil p = grid_laplacian(40, 40);
+  SparseCholesky probe(GetParam());
+  ASSERT_TRUE(probe.factorize_shifted(p.K, p.M, -1.0).ok);
+  const double needed = probe.statistics().factor_bytes_estimate;
+
+  SparseCholesky chol(GetParam());
+  chol.set_memory_limit(0.5 * needed);
+  const FactorStatus refused = chol.factorize_shifted(p.K, p.M, -1.0);
+  EXPECT_FALSE(refused.ok);
+  EXPECT_TRUE(refused.over_memory_limit);
+  EXPECT_NE(refused.message.find("above the limit"), std::string::npos) << refused.message;
+  EXPECT_EQ(chol.statistics().factorizations, 0);
+  EXPECT_FALSE(chol.factorized());
+
+  chol.set_memory_limit(2.0 * needed);
+  const FactorStatus done = chol.factorize_shifted(p.K, p.M, -1.0);
+  EXPECT_TRUE(done.ok) << done.message;
+  EXPECT_FALSE(done.over_memory_limit);
+  EXPECT_THROW(chol.set_memory_limit(-1.0), std::invalid_argument);
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, SparseCholeskyKinds,
                          ::testing::Values(FactorKind::automatic, FactorKind::simplicial,
                                            FactorKind::supernodal));
