@@ -9,7 +9,7 @@
 
 namespace rigflex::io {
 
-fe::MassProperties parse_mass_record(const std::string& text, const std::string& source) {
+static fe::MassProperties parse_mass_record_unguarded(const std::string& text, const std::string& source) {
   YAML::Node root = load_yaml(text, source);
   const YamlContext ctx(source);
   if (root.IsMap() && root["mean"]) root = root["mean"];  // an identification.json
@@ -24,6 +24,10 @@ fe::MassProperties parse_mass_record(const std::string& text, const std::string&
   const auto J = ctx.numbers(root, "inertia", 6);
   p.inertia = rig::inertia_tensor({J[0], J[1], J[2], J[3], J[4], J[5]});
   return p;
+}
+
+fe::MassProperties parse_mass_record(const std::string& text, const std::string& source) {
+  return guard_yaml(source, [&] { return parse_mass_record_unguarded(text, source); });
 }
 
 fe::MassProperties read_mass_record(const std::filesystem::path& file) {

@@ -529,7 +529,9 @@ class ModelFileReader {
 
 }  // namespace
 
-ModelFile parse_model(const std::string& text, const std::string& source) {
+namespace {
+
+ModelFile parse_model_unguarded(const std::string& text, const std::string& source) {
   const YamlContext ctx(source);
   const YAML::Node root = load_yaml(text, source);
   if (!root.IsMap()) throw InputError(source, 1, "", "a model file is a mapping of sections (materials, nodes, ...)");
@@ -547,6 +549,12 @@ ModelFile parse_model(const std::string& text, const std::string& source) {
   if (out.model.nodes.empty()) throw InputError(source, 1, "nodes", "the model has no nodes");
   out.name = root["name"].IsDefined() ? ctx.text(root, "name") : std::filesystem::path(source).stem().string();
   return out;
+}
+
+}  // namespace
+
+ModelFile parse_model(const std::string& text, const std::string& source) {
+  return guard_yaml(source, [&] { return parse_model_unguarded(text, source); });
 }
 
 }  // namespace rigflex::io

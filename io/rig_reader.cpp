@@ -93,7 +93,7 @@ struct RigFileReader {
 
   // One value for every rod or a list of one per rod.
   std::vector<double> per_rod(const YAML::Node& map, const std::string& key) const {
-    if (map[key].IsSequence()) return ctx.numbers(map, key, static_cast<size_t>(rods));
+    if (ctx.required(map, key).IsSequence()) return ctx.numbers(map, key, static_cast<size_t>(rods));
     return std::vector<double>(static_cast<size_t>(rods), ctx.number(map, key));
   }
 
@@ -336,8 +336,9 @@ YAML::Node node_at(const YAML::Node& root, const std::string& path) {
 
 }  // namespace
 
-rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& source,
-                            const std::filesystem::path& base) {
+// parse_rig_spec and add_effects without guard_yaml.
+static rig::RigSpec parse_rig_spec_unguarded(const std::string& yaml_text, const std::string& source,
+                                             const std::filesystem::path& base) {
   const YAML::Node root = load_yaml(yaml_text, source);
   RigFileReader r{YamlContext(source), base};
   const YamlContext& ctx = r.ctx;
@@ -432,7 +433,8 @@ rig::RigModel read_rig(const std::filesystem::path& file, const RigReadOptions& 
   return resolve_rig(read_rig_spec(file), options);
 }
 
-void add_effects(rig::RigModel& model, const std::filesystem::path& file, const RigReadOptions& options) {
+static void add_effects_unguarded(rig::RigModel& model, const std::filesystem::path& file,
+                                  const RigReadOptions& options) {
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), 0, "", "cannot open the effects file");
   std::stringstream ss;
@@ -452,6 +454,15 @@ void add_effects(rig::RigModel& model, const std::filesystem::path& file, const 
   } catch (const std::invalid_argument& x) {
     throw InputError(file.string(), YamlContext::line_of(root["effects"]), "effects", x.what());
   }
+}
+
+rig::RigSpec parse_rig_spec(const std::string& yaml_text, const std::string& source,
+                            const std::filesystem::path& base) {
+  return guard_yaml(source, [&] { return parse_rig_spec_unguarded(yaml_text, source, base); });
+}
+
+void add_effects(rig::RigModel& model, const std::filesystem::path& file, const RigReadOptions& options) {
+  guard_yaml(file.string(), [&] { add_effects_unguarded(model, file, options); });
 }
 
 }  // namespace rigflex::io

@@ -112,4 +112,18 @@ YAML::Node load_yaml(const std::string& text, const std::string& source, long ma
   return root;
 }
 
+InputError yaml_input_error(const std::string& source, const YAML::Exception& e) {
+  if (dynamic_cast<const YAML::InvalidNode*>(&e) != nullptr) {
+    // yaml-cpp's text: 'invalid node; first invalid key: "area"'.
+    const std::string marker = "first invalid key: \"";
+    const size_t at = e.msg.find(marker);
+    const std::string key =
+        at == std::string::npos
+            ? ""
+            : e.msg.substr(at + marker.size(), e.msg.find('"', at + marker.size()) - at - marker.size());
+    return InputError(source, 0, key, "missing where it is needed, or not of the kind expected");
+  }
+  return InputError(source, e.mark.is_null() ? 0 : e.mark.line + 1, "", e.msg);
+}
+
 }  // namespace rigflex::io

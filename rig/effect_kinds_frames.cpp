@@ -37,7 +37,10 @@ Eigen::Vector2d compliance_pair(const ParameterValue& c, const std::string& at, 
   if (!node.defined()) return v;
   const std::string key = at + "." + k;
   if (node.kind != ParameterValue::Kind::list || node.items.size() != 2) R::fail(node, key, "needs [x, y]");
-  v << R::as_number(node.items[0], key), R::as_number(node.items[1], key);
+  // Read before assigning: a comma initializer left half-filled by a throw
+  // asserts as it unwinds (found by fuzzing).
+  v.x() = R::as_number(node.items[0], key);
+  v.y() = R::as_number(node.items[1], key);
   non_negative(Vec3(v.x(), v.y(), 0.0), node, key);
   return v;
 }

@@ -3,7 +3,7 @@
 # it with find_package(rigflex), run it on a model, and check its frequencies
 # against the rigflex command line's modes.json of the same model (the same
 # library code, so they agree to the printed 6 digits).
-#   cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -DRIGFLEX=.. -P run.cmake
+#   cmake -DBUILD_DIR=.. -DSOURCE_DIR=.. -DWORK_DIR=.. -DRIGFLEX=.. -DCXX_COMPILER=.. -P run.cmake
 file(REMOVE_RECURSE ${WORK_DIR})
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -13,8 +13,10 @@ function(run)
   set(run_output "${out}" PARENT_SCOPE)
 endfunction()
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${WORK_DIR}/prefix)
+# With the build's compiler: a sanitized build's targets carry its
+# -fsanitize flags, which only that compiler may know.
 run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/consumer -B ${WORK_DIR}/build -G Ninja
-    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix)
+    -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 set(model ${SOURCE_DIR}/examples/beam-frame/model.yaml)
 run(${WORK_DIR}/build/first_modes ${model})

@@ -61,5 +61,27 @@ TEST(PhysicalRange, NamesHowFarAUnitSlipIs) {
   EXPECT_NE(range_problem(-3200.0, io::ranges::coordinate).find("3 orders of magnitude above"), std::string::npos);
 }
 
+// A lookup a reader did not check first throws yaml-cpp's own exceptions;
+// guard_yaml turns them into the InputError of the file, with the key
+// (an invalid node) or the line (a conversion) that yaml-cpp knows.
+TEST(GuardYaml, YamlCppExceptionsBecomeInputErrorsOfTheFile) {
+  const YAML::Node root = io::load_yaml("rods:\n  youngs_modulus: 2.1e11\nmass: heavy\n", "rig.yaml");
+  try {
+    io::guard_yaml("rig.yaml", [&] { return root["rods"]["area"]["x"].IsSequence(); });
+    FAIL() << "no error";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "rig.yaml");
+    EXPECT_EQ(e.key(), "area") << e.what();
+  }
+  try {
+    io::guard_yaml("rig.yaml", [&] { return root["mass"].as<double>(); });
+    FAIL() << "no error";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "rig.yaml");
+    EXPECT_EQ(e.line(), 3) << e.what();
+  }
+  EXPECT_EQ(io::guard_yaml("rig.yaml", [&] { return root["rods"]["youngs_modulus"].as<double>(); }), 2.1e11);
+}
+
 }  // namespace
 }  // namespace rigflex
