@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/work_estimate.hpp"
 #include "identify/identification_rig.hpp"
 #include "identify/predicted_error.hpp"
 #include "io/atomic_file.hpp"
@@ -86,8 +87,7 @@ void print(const rig::CheckResult& r) {
 int run(const CheckArgs& a) {
   std::optional<io::OutputFolder> folder;
   if (!a.out.empty()) folder.emplace(a.out, "check");
-  io::RigReadOptions ro;
-  if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "check: frame reduction: %s\n", s.c_str()); };
+  const io::RigReadOptions ro = frame_reduction_options("check", a.quiet);
   const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   const rig::CheckResult r = [&] {
     try {

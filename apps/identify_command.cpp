@@ -10,6 +10,7 @@
 
 #include "apps/commands.hpp"
 #include "apps/measured_model.hpp"
+#include "apps/work_estimate.hpp"
 #include "identify/identification.hpp"
 #include "io/atomic_file.hpp"
 #include "io/mass_record.hpp"
@@ -111,8 +112,7 @@ std::vector<identify::IdentificationResult> identify_all(const identify::Identif
 
 int run(const IdentifyArgs& a) {
   io::OutputFolder folder(a.out, "identify");
-  io::RigReadOptions ro;
-  if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "identify: frame reduction: %s\n", s.c_str()); };
+  const io::RigReadOptions ro = frame_reduction_options("identify", a.quiet);
   rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   // The effects files (as compare and diagnose take them, e.g. the ones
   // diagnose wrote) extend the model the identification inverts: a frame's

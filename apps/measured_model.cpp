@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "apps/work_estimate.hpp"
 #include "io/input_error.hpp"
 #include "io/integration_error.hpp"
 #include "io/measurement_csv.hpp"
@@ -24,10 +25,7 @@ std::vector<std::string> MeasuredModel::sources() const {
 MeasuredModel read_measured_model(const std::string& rig_file, const std::vector<std::string>& effects_files,
                                   const std::vector<std::string>& data, bool quiet, const char* command) {
   MeasuredModel mm;
-  io::RigReadOptions ro;
-  if (!quiet) {
-    ro.progress = [command](const std::string& s) { std::fprintf(stderr, "%s: frame reduction: %s\n", command, s.c_str()); };
-  }
+  const io::RigReadOptions ro = frame_reduction_options(command, quiet);
   mm.model = io::resolve_rig(io::read_rig_spec(rig_file), ro);
   mm.model_files.push_back(rig_file);
   mm.label = std::filesystem::path(rig_file).filename().string();

@@ -79,11 +79,7 @@ int run(const ModesArgs& args) {
   if (!args.out.empty()) folder.emplace(args.out, "modes");
   const io::ModelFile m = io::read_model(args.model);
   const double limit = memory_limit_bytes(args.max_memory_gib);
-  const fe::AssemblySize size = fe::assembly_size(m.model);
-  if (const std::string refusal = assembly_refusal(size, limit); !refusal.empty()) {
-    throw io::InputError(args.model, 0, "", refusal + "; nothing written");
-  }
-  if (!args.quiet) std::fprintf(stderr, "%s\n", assembly_line(size).c_str());
+  announce_assembly(args.model, m.model, limit, args.quiet);
   linalg::EigenOptions opt;
   opt.max_factor_bytes = limit;
   if (!args.quiet) {
@@ -97,14 +93,15 @@ int run(const ModesArgs& args) {
       std::fprintf(stderr, "\rlanczos: restart %d, %d converged", p.restart, p.converged);
       std::fflush(stderr);
     };
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt);
+  fe::AssemblyOptions assembly;
+  if (!args.quiet) assembly.progress = assembly_progress();
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt, assembly);
   if (!args.quiet) {
     std::fprintf(stderr, "\nfactorization %.2f s, Lanczos %.2f s\n", a.result.factor_seconds,
                  a.result.iteration_seconds);
   }
   if (a.result.over_memory_limit) {
-    throw io::InputError(args.model, 0, "",
-                         a.result.message + " (--max-memory, default the machine's memory); nothing written");
+    throw io::InputError(args.model, 0, "", memory_refusal(a.result.message));
   }
   std::printf("model: %s, %ld free DOFs, mass %.6g kg\n", m.name.c_str(), static_cast<long>(a.system.dofs.free_count()),
               a.mass.mass);

@@ -87,18 +87,23 @@ void print_summary(const reduction::ReducedFrame& r) {
 int run(const ReduceArgs& args) {
   io::OutputFolder folder(args.out, "reduce");
   const io::ModelFile m = io::read_model(args.model);
-  const fe::AssemblySize size = fe::assembly_size(m.model);
-  if (const std::string refusal = assembly_refusal(size, memory_limit_bytes(args.max_memory_gib)); !refusal.empty()) {
-    throw io::InputError(args.model, 0, "", refusal + "; nothing written");
+  const double limit = memory_limit_bytes(args.max_memory_gib);
+  announce_assembly(args.model, m.model, limit, args.quiet, "reduce: ");
+  reduction::FrameReductionOptions o = to_options(args);
+  o.max_factor_bytes = limit;
+  if (!args.quiet) {
+    o.assembly_progress = assembly_progress("reduce: ");
+    o.analyzed = [](const linalg::FactorStatistics& s) {
+      std::fprintf(stderr, "reduce: %s\n", factor_line(s).c_str());
+    };
   }
-  if (!args.quiet) std::fprintf(stderr, "reduce: %s\n", assembly_line(size).c_str());
-  const reduction::FrameReductionOptions o = to_options(args);
   reduction::ReducedFrame r;
   try {
     r = reduction::reduce_frame(m.model, o);
   } catch (const fe::ModelError& e) {
     throw io::InputError(args.model, 0, "--interface", e.what());
   } catch (const reduction::ReductionError& e) {
+    if (e.over_memory_limit) throw io::InputError(args.model, 0, "", memory_refusal(e.what()));
     std::fprintf(stderr, "rigflex: error: %s: %s\n", args.model.c_str(), e.what());
     if (!e.free_dofs.empty()) {
       std::fprintf(stderr, "free DOFs:\n");
@@ -141,8 +146,8 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--out", a->out, "folder for reduced.json, reduced.mat and the .mtx files")->required();
   cmd->add_flag("--quiet", a->quiet, "no progress on stderr");
   cmd->add_option("--max-memory", a->max_memory_gib,
-                  "GiB the assembly may use (default: the machine's memory); a larger model is refused before the "
-                  "work")
+                  "GiB the assembly and each factorization may use (default: the machine's memory); a larger model "
+                  "is refused before the work")
       ->check(positive());
   cmd->callback([a, &exit_code] { exit_code = run(*a); });
 }

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "apps/commands.hpp"
+#include "apps/work_estimate.hpp"
 #include "io/atomic_file.hpp"
 #include "io/integration_error.hpp"
 #include "io/measurement_csv.hpp"
@@ -46,8 +47,7 @@ rig::Record file_record(const rig::Record& h, const rig::RigModel& model, const 
 int run(const SimulateArgs& a) {
   io::OutputFolder folder(a.out, "simulate");
   const auto start = std::chrono::steady_clock::now();
-  io::RigReadOptions ro;
-  if (!a.quiet) ro.progress = [](const std::string& s) { std::fprintf(stderr, "simulate: frame reduction: %s\n", s.c_str()); };
+  const io::RigReadOptions ro = frame_reduction_options("simulate", a.quiet);
   const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
   const rig::RigSystem rig(model);
   rig::MeasurementOptions o;

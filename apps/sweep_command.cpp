@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "apps/commands.hpp"
+#include "apps/work_estimate.hpp"
 #include "identify/sweep.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_folder.hpp"
@@ -41,7 +42,7 @@ identify::ScaleRange parse_range(const std::string& text, const std::string& opt
 
 int run(const SweepArgs& a) {
   io::OutputFolder folder(a.out, "sweep");
-  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig));
+  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), frame_reduction_options("sweep", a.quiet));
   identify::SweepOptions o;
   o.mass = parse_range(a.mass_scale, "--mass-scale");
   o.stiffness = parse_range(a.stiffness_scale, "--stiffness-scale");

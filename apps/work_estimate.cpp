@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/input_error.hpp"
+
 namespace rigflex::app {
 namespace {
 
@@ -13,6 +15,10 @@ namespace {
 // 1.1-1.3 s with the ordering. Only the order of the time is promised; the
 // flop count printed beside it is exact.
 constexpr double kFactorFlopsPerSecond = 3e9;
+
+// Below this many elements the assembly takes well under a second (20 000
+// four-node shells, 122k DOFs: 1.7 s on two busy cores): no progress line.
+constexpr long kElementsWorthProgress = 10000;
 
 std::string format(const char* fmt, double a) {
   char buf[64];
@@ -49,7 +55,42 @@ std::string assembly_refusal(const fe::AssemblySize& size, double limit_bytes) {
   if (limit_bytes <= 0 || size.bytes <= limit_bytes) return "";
   return "the model's " + std::to_string(size.dofs) + " DOFs and " + format("%.3g", size.nonzeros) +
          " nonzeros need about " + bytes_text(size.bytes) + " to assemble, above the limit of " +
-         bytes_text(limit_bytes) + " (--max-memory, default the machine's memory)";
+         bytes_text(limit_bytes);
+}
+
+std::string memory_refusal(const std::string& why) {
+  return why + " (--max-memory, default the machine's memory); nothing written";
+}
+
+std::function<void(long, long)> assembly_progress(const std::string& prefix) {
+  return [prefix](long done, long total) {
+    if (total < kElementsWorthProgress) return;
+    std::fprintf(stderr, "\r%sassembled %ld of %ld elements", prefix.c_str(), done, total);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+  };
+}
+
+io::RigReadOptions frame_reduction_options(const std::string& command, bool quiet) {
+  io::RigReadOptions o;
+  o.max_bytes = memory_limit_bytes(std::nullopt);
+  if (quiet) return o;
+  const std::string prefix = command + ": frame reduction: ";
+  o.progress = [prefix](const std::string& s) { std::fprintf(stderr, "%s%s\n", prefix.c_str(), s.c_str()); };
+  o.analyzed = [prefix](const linalg::FactorStatistics& s) {
+    std::fprintf(stderr, "%s%s\n", prefix.c_str(), factor_line(s).c_str());
+  };
+  o.assembly_progress = assembly_progress(prefix);
+  return o;
+}
+
+void announce_assembly(const std::string& model_file, const fe::Model& model, double limit_bytes, bool quiet,
+                       const std::string& prefix) {
+  const fe::AssemblySize size = fe::assembly_size(model);
+  if (const std::string refusal = assembly_refusal(size, limit_bytes); !refusal.empty()) {
+    throw io::InputError(model_file, 0, "", memory_refusal(refusal));
+  }
+  if (!quiet) std::fprintf(stderr, "%s%s\n", prefix.c_str(), assembly_line(size).c_str());
 }
 
 }  // namespace rigflex::app

@@ -2,10 +2,12 @@
 // What a command tells the user before a large solve, and the limit it holds
 // it to (--max-memory): the assembled system's size from the model's
 // connectivity, then the factor's from CHOLMOD's symbolic analysis.
+#include <functional>
 #include <optional>
 #include <string>
 
 #include "fe/assembly_size.hpp"
+#include "io/rig_reader.hpp"
 #include "linalg/sparse_cholesky.hpp"
 
 namespace rigflex::app {
@@ -23,5 +25,26 @@ std::string factor_line(const linalg::FactorStatistics& s);
 
 // The refusal when the assembly alone would pass the limit; empty if it fits.
 std::string assembly_refusal(const fe::AssemblySize& size, double limit_bytes);
+
+// A refusal's whole message: why (an estimate above the limit), where the
+// limit comes from, and that nothing was written.
+std::string memory_refusal(const std::string& why);
+
+// Before a command assembles `model` (read from `model_file`): throws
+// io::InputError naming the file when the assembly would pass the limit,
+// else tells the user the system's size on stderr (unless quiet), after
+// `prefix` ("reduce: ").
+// Shows the assembly's progress on one stderr line ("assembled 1200 of
+// 5000 elements"), ended at the last element.
+std::function<void(long done, long total)> assembly_progress(const std::string& prefix = "");
+
+// How the commands that read a rig file reduce its frames: the stages, each
+// factorization's size and the assembly's progress told on stderr after
+// "COMMAND: frame reduction: " (unless quiet), and every frame held to the
+// machine's memory.
+io::RigReadOptions frame_reduction_options(const std::string& command, bool quiet);
+
+void announce_assembly(const std::string& model_file, const fe::Model& model, double limit_bytes, bool quiet,
+                       const std::string& prefix = "");
 
 }  // namespace rigflex::app

@@ -2,6 +2,7 @@
 // Global stiffness and mass of a model on its free DOFs: supports removed,
 // rigid-coupling dependents eliminated exactly through a transformation.
 #include <Eigen/Sparse>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct AssemblyOptions {
   // Drop DOFs that nothing stiffens and nothing loads with mass (for example
   // the rotations of a node that only springs or point masses touch).
   bool drop_unused_dofs = true;
+  // Optional: called with the elements assembled so far and their total at
+  // every 2 % of them, the last at the last element (long work shows progress).
+  std::function<void(long done, long total)> progress;
 };
 
 // Full, unconstrained matrices over all nodal DOFs (6 per node, node order).

@@ -43,9 +43,11 @@ namespace {
 
 // Unique per process and call: two runs (or two threads) writing the same
 // target do not write into each other's temporary.
-fs::path temp_name(const fs::path& target) {
+fs::path temp_name(const fs::path& target, const fs::path& staging) {
   static std::atomic<unsigned long> counter{0};
-  return target.string() + ".tmp-rigflex-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  const std::string n = std::to_string(counter++);
+  if (!staging.empty()) return staging / (n + "-" + target.filename().string());
+  return target.string() + ".tmp-rigflex-" + std::to_string(::getpid()) + "-" + n;
 }
 
 void write_text(const fs::path& p, const std::string& text) {
@@ -66,6 +68,13 @@ extern "C" void remove_and_reraise(int sig) {
 void remove_pending_temporaries() noexcept {
   for (auto& slot : g_pending) {
     if (const char* p = slot.load()) ::unlink(p);
+  }
+  // Folders, now that their files are gone (unlink refuses a folder); a
+  // folder holding another registered one empties on a later sweep.
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    for (auto& slot : g_pending) {
+      if (const char* p = slot.load()) ::rmdir(p);
+    }
   }
 }
 
@@ -91,6 +100,8 @@ void FileBatch::add_text(const fs::path& target, std::string text) {
   add(target, [text = std::move(text)](const fs::path& p) { write_text(p, text); });
 }
 
+void FileBatch::stage_in(fs::path dir) { staging_ = std::move(dir); }
+
 std::vector<fs::path> FileBatch::targets() const {
   std::vector<fs::path> out;
   for (const auto& item : items_) out.push_back(item.first);
@@ -103,17 +114,27 @@ void FileBatch::commit() {
     size_t slot;
   };
   std::vector<Written> written;
+  // The staging folder is registered first: the signal handler removes it
+  // after the files written into it.
+  size_t staging_slot = kSlots;
+  bool staged = false;
   auto release = [&](bool remove) {
     std::error_code ec;
     for (const auto& w : written) {
       if (remove) fs::remove(w.tmp, ec);
       unregister_temporary(w.slot);
     }
+    if (staged) fs::remove(staging_, ec);  // only if empty: a folder someone else filled stays
+    unregister_temporary(staging_slot);
   };
   try {
+    if (!staging_.empty()) {
+      staging_slot = register_temporary(staging_);
+      staged = fs::create_directories(staging_);
+    }
     for (const auto& [target, write] : items_) {
       if (target.has_parent_path()) fs::create_directories(target.parent_path());
-      const fs::path tmp = temp_name(target);
+      const fs::path tmp = temp_name(target, staging_);
       written.push_back({tmp, register_temporary(tmp)});
       write(tmp);
       if (!fs::exists(tmp)) throw std::runtime_error("cannot write " + target.string());

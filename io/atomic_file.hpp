@@ -20,7 +20,8 @@ void write_text_atomically(const std::filesystem::path& target, const std::strin
 // async-signal-safe; remove_temporaries_on_signals() installs it for
 // SIGINT, SIGTERM and SIGHUP (then the signal's default action: the process
 // ends as it would have), for a command line to call once. A library never
-// installs it by itself.
+// installs it by itself. A registered folder is removed after the files in
+// it (rmdir: only once empty).
 void remove_pending_temporaries() noexcept;
 void remove_temporaries_on_signals();
 // Registers another file for removal on those signals (an output folder's
@@ -34,11 +35,17 @@ class FileBatch {
  public:
   void add(const std::filesystem::path& target, std::function<void(const std::filesystem::path&)> write);
   void add_text(const std::filesystem::path& target, std::string text);
+  // Writes the temporaries into `dir` (created for the commit and removed
+  // after it; on the targets' file system) instead of beside each target:
+  // a run killed outright leaves its debris in that one folder, not among
+  // the results.
+  void stage_in(std::filesystem::path dir);
   void commit();  // throws std::runtime_error naming the file that failed
   std::vector<std::filesystem::path> targets() const;
 
  private:
   std::vector<std::pair<std::filesystem::path, std::function<void(const std::filesystem::path&)>>> items_;
+  std::filesystem::path staging_;
 };
 
 }  // namespace rigflex::io

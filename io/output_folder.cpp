@@ -1,10 +1,7 @@
 #include "io/output_folder.hpp"
 
-#include <fcntl.h>
-#include <signal.h>
 #include <unistd.h>
 
-#include <cerrno>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -16,25 +13,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kLock = ".rigflex-lock";
+constexpr const char* kStagingPrefix = ".rigflex-run-";
 
-bool process_alive(long pid) { return pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM); }
-
-long lock_owner(const fs::path& lock) {
-  std::ifstream in(lock);
-  long pid = 0;
-  in >> pid;
-  return pid;
-}
-
-// O_EXCL: exactly one of two runs starting at once creates the file.
-bool try_lock(const fs::path& lock) {
-  const int fd = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-  if (fd < 0) return false;
-  const std::string pid = std::to_string(::getpid()) + "\n";
-  const bool ok = ::write(fd, pid.data(), pid.size()) == static_cast<ssize_t>(pid.size());
-  ::close(fd);
-  return ok;
+// Every staging folder in a locked folder is left by a run that was killed
+// outright: while the lock is held, no other run writes there.
+void remove_stale_staging(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (e.path().filename().string().rfind(kStagingPrefix, 0) == 0 && e.is_directory(ec)) fs::remove_all(e.path(), ec);
+  }
 }
 
 // A manifest entry is a plain relative path inside the folder.
@@ -65,24 +52,21 @@ OutputFolder::OutputFolder(fs::path dir, const std::string& command, std::string
   created_ = !fs::exists(dir_, ec);
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError(dir_.string(), 0, option, "cannot create the output folder");
-  const fs::path lock = dir_ / kLock;
-  if (!try_lock(lock)) {
-    const long owner = lock_owner(lock);
-    if (process_alive(owner) && owner != ::getpid()) {
-      throw InputError(dir_.string(), 0, option,
-                       "another rigflex run (pid " + std::to_string(owner) +
-                           ") is writing into this folder: wait for it, or choose another folder");
-    }
-    fs::remove(lock, ec);  // left by a run that was killed
-    if (!try_lock(lock)) throw InputError(dir_.string(), 0, option, "cannot lock the output folder");
+  try {
+    lock_.emplace(dir_, option);
+  } catch (...) {
+    if (created_) fs::remove(dir_, ec);
+    throw;
   }
-  lock_slot_ = register_temporary(lock);
+  remove_stale_staging(dir_);
+  // A signal that ends the run leaves no empty folder it created behind.
+  if (created_) created_slot_ = register_temporary(dir_);
 }
 
 OutputFolder::~OutputFolder() {
+  lock_.reset();
+  if (created_) unregister_temporary(created_slot_);
   std::error_code ec;
-  fs::remove(dir_ / kLock, ec);
-  unregister_temporary(lock_slot_);
   // A run refused before writing leaves no folder behind that it created.
   if (created_ && fs::is_empty(dir_, ec)) fs::remove(dir_, ec);
 }
@@ -97,6 +81,8 @@ void OutputFolder::commit(FileBatch& batch, const std::vector<fs::path>& also) {
   };
   for (const auto& t : batch.targets()) now.insert(relative(t));
   for (const auto& t : also) now.insert(relative(t));
+  const fs::path staging = dir_ / (kStagingPrefix + std::to_string(::getpid()));
+  batch.stage_in(staging);
   batch.commit();
   std::error_code ec;
   for (const fs::path& old : read_manifest(manifest_)) {
@@ -106,7 +92,10 @@ void OutputFolder::commit(FileBatch& batch, const std::vector<fs::path>& also) {
   m << "# files the last run of this rigflex command wrote here; its next run removes those it does not "
        "write again\n";
   for (const auto& p : now) m << p.generic_string() << "\n";
-  write_text_atomically(manifest_, m.str());
+  FileBatch manifest;
+  manifest.add_text(manifest_, m.str());
+  manifest.stage_in(staging);
+  manifest.commit();
 }
 
 }  // namespace rigflex::io

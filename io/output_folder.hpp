@@ -1,17 +1,22 @@
 #pragma once
 // The folder a run writes its results into (--out). While the run lasts it
-// holds a lock (`.rigflex-lock`, the run's pid): a second run into the same
-// folder is refused at its start, with the pid, instead of the two mixing
-// their files. When the results are committed, the files an earlier run of
-// the same command wrote there (listed in `.rigflex-manifest-COMMAND`) and
-// this one did not are removed - a second `modes` run with fewer modes no
-// longer leaves the first run's extra mode files - while anything else in
-// the folder (another command's results, the user's files) is left alone. A lock whose process has ended (a run killed
-// with SIGKILL) is taken over; SIGINT/SIGTERM remove it with the temporaries (io/atomic_file.hpp).
+// is locked (io/folder_lock.hpp): a second run into the same folder is
+// refused at its start, with the pid, instead of the two mixing their
+// files. The run's files are written into a private folder inside it
+// (`.rigflex-run-PID`) and moved into place together when all are written;
+// a run killed outright leaves only that folder, which the next run into
+// the folder removes. When the results are committed, the files an earlier
+// run of the same command wrote there (listed in
+// `.rigflex-manifest-COMMAND`) and this one did not are removed - a second
+// `modes` run with fewer modes no longer leaves the first run's extra mode
+// files - while anything else in the folder (another command's results,
+// the user's files) is left alone.
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/folder_lock.hpp"
 
 namespace rigflex::io {
 
@@ -34,7 +39,8 @@ class OutputFolder {
  private:
   std::filesystem::path dir_, manifest_;
   bool created_ = false;
-  size_t lock_slot_;
+  std::optional<FolderLock> lock_;
+  size_t created_slot_ = 0;
 };
 
 }  // namespace rigflex::io

@@ -378,7 +378,7 @@ static rig::RigSpec parse_rig_spec_unguarded(const std::string& yaml_text, const
 
 rig::RigModel resolve_rig(const rig::RigSpec& spec, const RigReadOptions& options) {
   try {
-    return rig::resolve_frames(spec, options.progress);
+    return rig::resolve_frames(spec, options);
   } catch (const rig::SpecError& e) {
     throw InputError(e.where().file, e.where().line, e.where().key, e.reason());
   }

@@ -16,9 +16,9 @@
 
 namespace rigflex::io {
 
-struct RigReadOptions {
-  std::function<void(const std::string&)> progress;  // in-process reductions report here
-};
+// How in-process reductions of the rig's frames report and what memory they
+// may take (rig::FrameResolveOptions).
+using RigReadOptions = rig::FrameResolveOptions;
 
 // What the file says, frames not yet reduced.
 rig::RigSpec read_rig_spec(const std::filesystem::path& file);

@@ -237,9 +237,16 @@ ReducedMatrices reduce_component(const linalg::SpMat& K, const linalg::SpMat& M,
 
   t0 = Clock::now();
   linalg::SparseCholesky factor;
+  factor.set_memory_limit(options.max_factor_bytes);
+  if (options.analyzed) factor.on_analysis(options.analyzed);
   const linalg::FactorStatus status = factor.factorize(Kb.ii);
   stats.factor_seconds = seconds_since(t0);
   stats.factor_bytes = factor.statistics().factor_bytes;
+  if (status.over_memory_limit) {
+    out.over_memory_limit = true;
+    out.message = "the interior stiffness K_ii: " + status.message;
+    return out;
+  }
   if (!status.ok || status.min_relative_pivot < kSingularPivot) {
     for (Eigen::Index d : linalg::mechanism_dofs(Kb.ii)) out.mechanism_dofs.push_back(dofs.interior[static_cast<size_t>(d)]);
     out.message = "the interior stiffness K_ii is singular with the interface DOFs held: the interface does not "

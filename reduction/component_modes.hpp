@@ -36,6 +36,11 @@ struct ComponentModeOptions {
   bool keep_basis = true;
   double tolerance = 1e-10;  // of the fixed-interface eigenpairs (EigenOptions::tolerance)
   std::function<void(const linalg::EigenProgress&)> progress;  // optional
+  // K_ii's factorization is not attempted when CHOLMOD's analysis puts the
+  // factor above max_factor_bytes (0: no limit): over_memory_limit.
+  // `analyzed` (optional) hears that analysis before the numeric work.
+  double max_factor_bytes = 0;
+  std::function<void(const linalg::FactorStatistics&)> analyzed;
 
   // Throws std::invalid_argument naming the option: negative or missing mode
   // count, both count and cutoff, more modes than interior DOFs, cutoff <= 0.
@@ -55,6 +60,7 @@ struct ComponentModeStatistics {
 struct ReducedMatrices {
   bool ok = false;
   std::string message;  // why not ok
+  bool over_memory_limit = false;  // refused by ComponentModeOptions::max_factor_bytes
   // Free DOFs (indices into K) where K_ii was found singular: the interior
   // is a mechanism once the boundary is held (for example a floating frame
   // whose interface cannot hold it statically).

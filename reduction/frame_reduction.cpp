@@ -123,8 +123,15 @@ FullModes full_model_modes(const fe::AssembledSystem& sys, FrameSupport support,
   }
   linalg::EigenOptions eo;
   eo.count = static_cast<int>(std::min<Eigen::Index>(n, expected_rigid + needed));
+  eo.max_factor_bytes = o.max_factor_bytes;
+  eo.analyzed = o.analyzed;
   FullModes f;
   f.result = solve_lanczos(sys.K, sys.M, eo);
+  if (f.result.over_memory_limit) {
+    ReductionError e("full-model modes: " + f.result.message);
+    e.over_memory_limit = true;
+    throw e;
+  }
   if (!f.result.mechanism_dofs.empty()) {
     std::vector<std::string> names;
     for (Eigen::Index d : f.result.mechanism_dofs) names.push_back(sys.dofs.describe(d));
@@ -289,7 +296,9 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
   const fe::Model& held = copy ? *copy : model;
 
   report(o, "assembling");
-  const fe::AssembledSystem sys = fe::assemble(held);
+  fe::AssemblyOptions ao;
+  ao.progress = o.assembly_progress;
+  const fe::AssembledSystem sys = fe::assemble(held, ao);
   const std::vector<Eigen::Index> boundary =
       interface_columns(held, sys.dofs, r.interface_nodes, o.retained, o.interface_set, r.interface_dofs);
   r.full_free_dofs = sys.dofs.free_count();
@@ -299,11 +308,15 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
   co.method = o.method;
   co.modes = o.modes;
   co.cutoff_hz = o.cutoff_hz;
+  co.max_factor_bytes = o.max_factor_bytes;
+  co.analyzed = o.analyzed;
   ReducedMatrices red = reduce_component(sys.K, sys.M, boundary, co);
   if (!red.ok) {
     std::vector<std::string> names;
     for (Eigen::Index d : red.mechanism_dofs) names.push_back(sys.dofs.describe(d));
-    throw ReductionError(red.message, names);
+    ReductionError e(red.message, names);
+    e.over_memory_limit = red.over_memory_limit;
+    throw e;
   }
   r.K = std::move(red.K);
   r.M = std::move(red.M);

@@ -28,6 +28,13 @@ struct FrameReductionOptions {
   std::array<int, 2> zeta_modes{1, 3};  // 1-based elastic modes of the full model
   int check_modes = 10;                 // elastic modes of the full model compared
   std::function<void(const std::string&)> progress;  // optional stage messages
+  std::function<void(long done, long total)> assembly_progress;  // optional: elements assembled (fe::AssemblyOptions)
+  // Each factorization (the interior K_ii, the full model's for the checks)
+  // is analyzed first and not attempted past max_factor_bytes (0: no
+  // limit): ReductionError with over_memory_limit. `analyzed` (optional)
+  // hears each analysis before its numeric work.
+  double max_factor_bytes = 0;
+  std::function<void(const linalg::FactorStatistics&)> analyzed;
 
   // Throws std::invalid_argument naming the option: zeta outside (0, 1), mode
   // indices < 1 or equal, check_modes < 1, reference_node without that
@@ -46,6 +53,7 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
 
 struct ReductionError : std::runtime_error {
   std::vector<std::string> free_dofs;  // "node 12 RZ", for a mechanism
+  bool over_memory_limit = false;      // a factor past FrameReductionOptions::max_factor_bytes
   ReductionError(const std::string& what, std::vector<std::string> dofs = {})
       : std::runtime_error(what), free_dofs(std::move(dofs)) {}
 };

@@ -2,9 +2,10 @@
 
 namespace rigflex::reduction {
 
-ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options) {
+ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options,
+                                 const fe::AssemblyOptions& assembly) {
   ModalAnalysis a;
-  a.system = fe::assemble(model);
+  a.system = fe::assemble(model, assembly);
   a.mass = fe::mass_properties(model);
   a.result = solve_lanczos(a.system.K, a.system.M, options);
   for (Eigen::Index dof : a.result.mechanism_dofs) a.mechanism.push_back(a.system.dofs.describe(dof));

@@ -22,6 +22,7 @@ struct ModalAnalysis {
 // Never throws for numerical outcomes: check result.converged and mechanism.
 // Throws fe::ModelError for an invalid model and std::invalid_argument for
 // invalid options.
-ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options);
+ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options,
+                                 const fe::AssemblyOptions& assembly = {});
 
 }  // namespace rigflex::reduction

@@ -8,10 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.hpp"
+#include "io/folder_lock.hpp"
 #include "io/input_error.hpp"
 #include "report/json_write.hpp"
 
 namespace rigflex::report {
+
+// How long recording waits for another run's lock on the study folder.
+constexpr double kStudyLockWaitSeconds = 60;
 
 std::string model_fingerprint(const std::vector<std::filesystem::path>& files, const std::string& extra) {
   std::uint64_t h = 14695981039346656037ull;
@@ -103,8 +107,14 @@ std::vector<StudyEntry> study_with(const std::filesystem::path& dir, const Study
 }
 
 std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, const StudyEntry& entry) {
-  const std::vector<StudyEntry> entries = study_with(dir, entry);
   std::filesystem::create_directories(dir);
+  // Read, changed and written back under the folder's lock: two compare
+  // runs recording into one study at once would otherwise each write back
+  // what it read, and one entry would be lost. The second waits its turn
+  // (the first holds the lock for milliseconds, or, where the study is its
+  // --out, for the run).
+  const io::FolderLock lock(dir, "--study", kStudyLockWaitSeconds);
+  const std::vector<StudyEntry> entries = study_with(dir, entry);
   Json j;
   j["versions"] = Json::array();
   for (const auto& e : entries) j["versions"].push_back(to_json(e));

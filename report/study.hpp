@@ -33,7 +33,9 @@ std::string model_fingerprint(const std::vector<std::filesystem::path>& files, c
 // for a study.json it cannot read. Non-finite errors are kept as NaN.
 std::vector<StudyEntry> study_with(const std::filesystem::path& dir, const StudyEntry& entry);
 
-// study_with, written back atomically; returns the entries.
+// study_with, written back atomically under the folder's lock (waiting up
+// to a minute for another run's; then InputError naming the folder and that
+// run); returns the entries.
 std::vector<StudyEntry> record_in_study(const std::filesystem::path& dir, const StudyEntry& entry);
 
 // compare.json's "study": each version's label and errors, the one with

@@ -1,5 +1,8 @@
 #include "rig/rig_spec.hpp"
 
+#include <cmath>
+
+#include "fe/assembly_size.hpp"
 #include "fe/error.hpp"
 #include "rig/effects.hpp"
 
@@ -14,10 +17,28 @@ std::string compose(const SpecSource& w, const std::string& reason) {
   return s.append(reason);
 }
 
-reduction::ReducedFrame reduced_frame(const FrameSource& s, const std::function<void(const std::string&)>& progress) {
+// What a frame too large for the memory is told.
+constexpr const char* kTooLarge =
+    " (the machine's memory): mesh the frame coarser, or reduce it on its own (rigflex reduce) and give the rig "
+    "its reduced matrices";
+
+std::string bytes_in_mib(double bytes) { return std::to_string(std::lround(bytes / 1048576.0)) + " MiB"; }
+
+reduction::ReducedFrame reduced_frame(const FrameSource& s, const FrameResolveOptions& options) {
   if (s.reduced) return *s.reduced;
   reduction::FrameReductionOptions o = s.reduction;
-  o.progress = progress;
+  o.progress = options.progress;
+  o.max_factor_bytes = options.max_bytes;
+  o.analyzed = options.analyzed;
+  o.assembly_progress = options.assembly_progress;
+  if (options.max_bytes > 0) {
+    const fe::AssemblySize size = fe::assembly_size(s.model);
+    if (size.bytes > options.max_bytes) {
+      throw SpecError(s.model_key, "the frame's " + std::to_string(size.dofs) + " DOFs need about " +
+                                       bytes_in_mib(size.bytes) + " to assemble, above the limit of " +
+                                       bytes_in_mib(options.max_bytes) + kTooLarge);
+    }
+  }
   try {
     reduction::ReducedFrame f = reduction::reduce_frame(s.model, o);
     f.name = s.model_name;
@@ -25,15 +46,14 @@ reduction::ReducedFrame reduced_frame(const FrameSource& s, const std::function<
   } catch (const fe::ModelError& x) {
     throw SpecError(s.model_key, x.what());
   } catch (const reduction::ReductionError& x) {
-    throw SpecError(s.model_key, x.what());
+    throw SpecError(s.model_key, x.what() + std::string(x.over_memory_limit ? kTooLarge : ""));
   } catch (const std::invalid_argument& x) {
     throw SpecError(s.effect, x.what());
   }
 }
 
-std::shared_ptr<const Effect> resolved(const FrameSource& s, const RigGeometry& g,
-                                       const std::function<void(const std::string&)>& progress) {
-  const reduction::ReducedFrame f = reduced_frame(s, progress);
+std::shared_ptr<const Effect> resolved(const FrameSource& s, const RigGeometry& g, const FrameResolveOptions& options) {
+  const reduction::ReducedFrame f = reduced_frame(s, options);
   try {
     if (s.fixed) return std::make_shared<FixedFrameFlexibility>(fixed_frame_model(f, g, s.matching));
     return std::make_shared<CarryingFrameFlexibility>(carrying_frame_model(f, g, s.matching));
@@ -62,12 +82,18 @@ int RigSpec::pending_frames() const {
 }
 
 RigModel resolve_frames(const RigSpec& spec, const std::function<void(const std::string&)>& progress) {
+  FrameResolveOptions o;
+  o.progress = progress;
+  return resolve_frames(spec, o);
+}
+
+RigModel resolve_frames(const RigSpec& spec, const FrameResolveOptions& options) {
   RigModel model = spec.rig;
   std::optional<SpecSource> last;  // of the frames resolved, the last one
   for (auto& e : model.effects) {
     if (const auto* p = dynamic_cast<const PendingFrame*>(e.get())) {
       last = p->source().effect;
-      e = resolved(p->source(), model.geometry, progress);
+      e = resolved(p->source(), model.geometry, options);
     }
   }
   if (!last) return model;

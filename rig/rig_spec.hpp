@@ -70,10 +70,22 @@ struct RigSpec {
   int pending_frames() const;
 };
 
-// The rig with every pending frame reduced (progress reports the reduction's
-// stages) and placed on the joints. Throws SpecError naming the rig file's
-// key when a frame model cannot be reduced or its interface does not meet the
+// How the frames are reduced: what the user hears, and the memory each
+// frame's assembly and factorizations may take.
+struct FrameResolveOptions {
+  std::function<void(const std::string&)> progress;  // the reduction's stages
+  // A frame whose assembly or any factorization would pass max_bytes (0: no
+  // limit; estimated before the work) is a SpecError at its model's key.
+  double max_bytes = 0;
+  std::function<void(const linalg::FactorStatistics&)> analyzed;  // each factorization's analysis
+  std::function<void(long done, long total)> assembly_progress;
+};
+
+// The rig with every pending frame reduced and placed on the joints. Throws
+// SpecError naming the rig file's key when a frame model cannot be reduced
+// (or would pass the memory limit) or its interface does not meet the
 // joints, or when the resolved rig fails RigModel::validate.
+RigModel resolve_frames(const RigSpec& spec, const FrameResolveOptions& options);
 RigModel resolve_frames(const RigSpec& spec, const std::function<void(const std::string&)>& progress = {});
 
 }  // namespace rigflex::rig

@@ -2,10 +2,12 @@
 // issue 4 is refused with an InputError naming the file, the line and the key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <string>
 
+#include "fe/assembly_size.hpp"
 #include "io/input_error.hpp"
 #include "io/rig_reader.hpp"
 #include "rig/effect.hpp"
@@ -517,6 +519,39 @@ TEST(RigSpec, ReadingReducesNoFrameAndResolvingGivesWhatReadRigGives) {
   EXPECT_EQ(a->model().K, b->model().K);
   EXPECT_EQ(a->model().M, b->model().M);
   EXPECT_EQ(a->model().joint_row, b->model().joint_row);
+}
+
+// A frame is held to the memory limit before its reduction's assembly (and
+// each factorization: FrameReduction.EachFactorizationIsHeldToTheMemoryLimit):
+// an error of the rig file's model key, telling the user what to do.
+TEST(RigSpec, AFrameTooLargeForTheMemoryIsRefusedBeforeTheWork) {
+  const std::filesystem::path file = std::filesystem::path(RIGFLEX_SOURCE_DIR) / "examples/large-rig/rig.yaml";
+  const rig::RigSpec spec = io::read_rig_spec(file);
+  const auto* pending = dynamic_cast<const rig::PendingFrame*>(spec.rig.effect("fixed_frame_flexibility"));
+  ASSERT_NE(pending, nullptr);
+  const double assembly = fe::assembly_size(pending->source().model).bytes;
+  double largest_factor = 0;
+  rig::FrameResolveOptions heard;
+  heard.analyzed = [&](const linalg::FactorStatistics& s) {
+    largest_factor = std::max(largest_factor, s.factor_bytes_estimate);
+  };
+  rig::resolve_frames(spec, heard);
+  ASSERT_GT(largest_factor, 0.0);
+
+  auto refusal = [&](double limit) -> std::string {
+    rig::FrameResolveOptions o;
+    o.max_bytes = limit;
+    try {
+      rig::resolve_frames(spec, o);
+    } catch (const rig::SpecError& e) {
+      EXPECT_EQ(e.where().key, "effects.fixed_frame_flexibility.model") << e.what();
+      EXPECT_NE(e.reason().find("rigflex reduce"), std::string::npos) << e.what();
+      return e.reason();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal(0.5 * assembly).find("to assemble, above the limit"), std::string::npos);
+  EXPECT_EQ(refusal(2 * std::max(assembly, largest_factor)), "");
 }
 
 TEST(RigSpec, AFrameThatCannotBeReducedIsNamedWhenResolved) {

@@ -57,6 +57,38 @@ TEST(FrameReduction, GroundedGuyanOfTheFixedFrame) {
   EXPECT_EQ(c.mac.cols(), 9);
 }
 
+// Each factorization of a reduction - the interior's, then the full
+// model's for the checks - is analyzed first and refused past the limit,
+// before its numeric work.
+TEST(FrameReduction, EachFactorizationIsHeldToTheMemoryLimit) {
+  const fe::Model m = test::rig_fixed_frame(20);  // past 200 DOFs, where the full model's modes are no longer dense
+  FrameReductionOptions o = options("upper_joints");
+  o.method = ReductionMethod::craig_bampton;
+  o.modes = 4;
+  std::vector<double> analyzed;
+  o.analyzed = [&](const linalg::FactorStatistics& s) { analyzed.push_back(s.factor_bytes_estimate); };
+  reduction::reduce_frame(m, o);
+  ASSERT_GE(analyzed.size(), 2u);  // K_ii, then K - sigma M of the full model
+  const double interior = analyzed[0], full = analyzed[1];
+  ASSERT_LT(interior, full);  // the interior has fewer DOFs
+
+  auto refusal = [&](double limit) -> std::string {
+    FrameReductionOptions held = o;
+    held.analyzed = nullptr;
+    held.max_factor_bytes = limit;
+    try {
+      reduction::reduce_frame(m, held);
+    } catch (const reduction::ReductionError& e) {
+      EXPECT_TRUE(e.over_memory_limit) << e.what();
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(refusal(0.5 * interior).find("interior stiffness K_ii"), std::string::npos);
+  EXPECT_NE(refusal(0.5 * (interior + full)).find("full-model modes"), std::string::npos);
+  EXPECT_EQ(refusal(2 * full), "");
+}
+
 TEST(FrameReduction, FreeFreeCarryingFrameKeepsRigidBodyAndMass) {
   const fe::Model m = test::rig_carrying_frame();
   FrameReductionOptions o = options("lower_joints");
