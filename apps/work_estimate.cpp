@@ -34,28 +34,16 @@ double memory_limit_bytes(std::optional<double> max_memory_gib) {
   return pages > 0 && page > 0 ? static_cast<double>(pages) * static_cast<double>(page) : 0.0;
 }
 
-std::string bytes_text(double bytes) {
-  if (bytes >= 1073741824.0) return format("%.2f GiB", bytes / 1073741824.0);
-  return format("%.1f MiB", bytes / 1048576.0);
-}
-
 std::string assembly_line(const fe::AssemblySize& size) {
   return "assembling " + std::to_string(size.dofs) + " DOFs, " + format("%.3g", size.nonzeros) +
-         " nonzeros in K, about " + bytes_text(size.bytes);
+         " nonzeros in K, about " + fe::bytes_text(size.bytes);
 }
 
 std::string factor_line(const linalg::FactorStatistics& s) {
   const double seconds = s.factor_flops / kFactorFlopsPerSecond;
-  return "factorizing: " + format("%.3g", s.factor_nnz) + " nonzeros in L, " + bytes_text(s.factor_bytes_estimate) +
+  return "factorizing: " + format("%.3g", s.factor_nnz) + " nonzeros in L, " + fe::bytes_text(s.factor_bytes_estimate) +
          ", " + format("%.3g", s.factor_flops) + " flops (about " +
          (seconds < 1 ? std::string("1 s or less") : format("%.0f s", std::ceil(seconds))) + " per factorization)";
-}
-
-std::string assembly_refusal(const fe::AssemblySize& size, double limit_bytes) {
-  if (limit_bytes <= 0 || size.bytes <= limit_bytes) return "";
-  return "the model's " + std::to_string(size.dofs) + " DOFs and " + format("%.3g", size.nonzeros) +
-         " nonzeros need about " + bytes_text(size.bytes) + " to assemble, above the limit of " +
-         bytes_text(limit_bytes);
 }
 
 std::string memory_refusal(const std::string& why) {
@@ -87,7 +75,7 @@ io::RigReadOptions frame_reduction_options(const std::string& command, bool quie
 void announce_assembly(const std::string& model_file, const fe::Model& model, double limit_bytes, bool quiet,
                        const std::string& prefix) {
   const fe::AssemblySize size = fe::assembly_size(model);
-  if (const std::string refusal = assembly_refusal(size, limit_bytes); !refusal.empty()) {
+  if (const std::string refusal = fe::assembly_refusal(size, limit_bytes); !refusal.empty()) {
     throw io::InputError(model_file, 0, "", memory_refusal(refusal));
   }
   if (!quiet) std::fprintf(stderr, "%s%s\n", prefix.c_str(), assembly_line(size).c_str());

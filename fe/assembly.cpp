@@ -181,8 +181,7 @@ AssembledSystem assemble(const Model& model, const AssemblyOptions& options) {
   // Each element DOF maps to a short list of (free column, weight): one entry
   // for a free DOF, none for a fixed one, up to four for a coupled one.
   std::vector<std::vector<std::pair<Eigen::Index, double>>> rows;
-  const long total =
-      static_cast<long>(model.beams.size() + model.shells.size() + model.point_masses.size() + model.springs.size());
+  const long total = element_count(model);
   long done = 0, reported = 0;  // elements; 2 % steps told
   for_each_element(model, [&](const std::vector<long>& dofs, const Eigen::MatrixXd& Ke, const Eigen::MatrixXd& Me) {
     if (options.progress && (++done * 50) / total > reported) {  // the last element is always step 50

@@ -1,6 +1,7 @@
 #include "fe/assembly_size.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <vector>
 
 namespace rigflex::fe {
@@ -78,6 +79,28 @@ AssemblySize assembly_size(const Model& model) {
   }
   for (const RigidCoupling& c : model.couplings) adj.star(model, c.reference, c.dependents);
   return adj.size();
+}
+
+namespace {
+
+std::string format(const char* fmt, double a) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, a);
+  return buf;
+}
+
+}  // namespace
+
+std::string bytes_text(double bytes) {
+  if (bytes >= 1073741824.0) return format("%.2f GiB", bytes / 1073741824.0);
+  return format("%.1f MiB", bytes / 1048576.0);
+}
+
+std::string assembly_refusal(const AssemblySize& size, double limit_bytes) {
+  if (limit_bytes <= 0 || size.bytes <= limit_bytes) return "";
+  return "the model's " + std::to_string(size.dofs) + " DOFs and " + format("%.3g", size.nonzeros) +
+         " nonzeros need about " + bytes_text(size.bytes) + " to assemble, above the limit of " +
+         bytes_text(limit_bytes);
 }
 
 }  // namespace rigflex::fe

@@ -102,6 +102,10 @@ void check_element_matrices(const Model& model) {
   for_each_element(model, [](const std::vector<long>&, const Eigen::MatrixXd&, const Eigen::MatrixXd&) {});
 }
 
+long element_count(const Model& model) {
+  return static_cast<long>(model.beams.size() + model.shells.size() + model.point_masses.size() + model.springs.size());
+}
+
 void for_each_element(const Model& model, const ElementVisitor& visit) {
   visit_beams(model, visit);
   visit_shells(model, visit);

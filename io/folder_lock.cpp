@@ -7,7 +7,6 @@
 #include <cerrno>
 #include <chrono>
 #include <fstream>
-#include <optional>
 #include <thread>
 
 #include "io/atomic_file.hpp"
@@ -42,7 +41,8 @@ bool try_lock(const fs::path& lock) {
 FolderLock::FolderLock(fs::path dir, const std::string& option, double wait_seconds) : file_(dir / kFileName) {
   using Clock = std::chrono::steady_clock;
   const auto deadline = Clock::now() + std::chrono::duration<double>(wait_seconds);
-  std::optional<Clock::time_point> unnamed_since;
+  bool unnamed = false;  // the file names no pid: since when
+  Clock::time_point unnamed_since;
   while (!try_lock(file_)) {
     const long owner = lock_owner(file_);
     if (owner == ::getpid()) return;  // held by this run already (a study kept in its own --out)
@@ -60,10 +60,10 @@ FolderLock::FolderLock(fs::path dir, const std::string& option, double wait_seco
     } else {
       // No pid yet: a run that has just created the file and is writing it,
       // or one killed in between. Taken over once it stays so for a second.
-      if (!unnamed_since) unnamed_since = Clock::now();
-      if (Clock::now() - *unnamed_since > std::chrono::seconds(1)) {
+      if (!unnamed) unnamed = true, unnamed_since = Clock::now();
+      if (Clock::now() - unnamed_since > std::chrono::seconds(1)) {
         fs::remove(file_, ec);
-        unnamed_since.reset();
+        unnamed = false;
         continue;
       }
     }

@@ -1,7 +1,5 @@
 #include "rig/rig_spec.hpp"
 
-#include <cmath>
-
 #include "fe/assembly_size.hpp"
 #include "fe/error.hpp"
 #include "rig/effects.hpp"
@@ -22,8 +20,6 @@ constexpr const char* kTooLarge =
     " (the machine's memory): mesh the frame coarser, or reduce it on its own (rigflex reduce) and give the rig "
     "its reduced matrices";
 
-std::string bytes_in_mib(double bytes) { return std::to_string(std::lround(bytes / 1048576.0)) + " MiB"; }
-
 reduction::ReducedFrame reduced_frame(const FrameSource& s, const FrameResolveOptions& options) {
   if (s.reduced) return *s.reduced;
   reduction::FrameReductionOptions o = s.reduction;
@@ -32,12 +28,8 @@ reduction::ReducedFrame reduced_frame(const FrameSource& s, const FrameResolveOp
   o.analyzed = options.analyzed;
   o.assembly_progress = options.assembly_progress;
   if (options.max_bytes > 0) {
-    const fe::AssemblySize size = fe::assembly_size(s.model);
-    if (size.bytes > options.max_bytes) {
-      throw SpecError(s.model_key, "the frame's " + std::to_string(size.dofs) + " DOFs need about " +
-                                       bytes_in_mib(size.bytes) + " to assemble, above the limit of " +
-                                       bytes_in_mib(options.max_bytes) + kTooLarge);
-    }
+    const std::string refusal = fe::assembly_refusal(fe::assembly_size(s.model), options.max_bytes);
+    if (!refusal.empty()) throw SpecError(s.model_key, refusal + kTooLarge);
   }
   try {
     reduction::ReducedFrame f = reduction::reduce_frame(s.model, o);
