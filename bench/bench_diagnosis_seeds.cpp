@@ -1,6 +1,7 @@
 // bench_diagnosis_seeds [--seeds N] [--first S] [--cases a,b,...] [--threads N]
 //                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
-//                       [--contender-gain G] [--contender-settled R] [--effects a,b,...] [--test-seed]
+//                       [--contender-gain G] [--contender-settled R] [--restart-span S]
+//                       [--effects a,b,...] [--test-seed]
 //                       [--verbose] [--progress]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
@@ -24,7 +25,9 @@
 // --relinearizations, --refinements, --relinearize-gain and --contender-gain set diagnose's
 // fit budget (defaults: DiagnosisOptions'), for studies of what more
 // iterations buy (--contender-settled: the residual / noise at which a
-// contender is left as it is; 0 takes every one on); --effects tests only those candidates. --test-seed
+// contender is left as it is; 0 takes every one on; --restart-span: which
+// contenders are restarted from their parameters zeroed one at a time, 0
+// none); --effects tests only those candidates. --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
 // gives it, to study the CI's case. --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise) and chain
@@ -71,6 +74,8 @@ Options parse(int argc, char** argv) {
       o.verbose = true;
     } else if (a == "--contender-settled") {
       o.diagnosis.contender_settled = std::stod(bench::option_value(argc, argv, i));
+    } else if (a == "--restart-span") {
+      o.diagnosis.restart_span = std::stod(bench::option_value(argc, argv, i));
     } else if (a == "--progress") {
       o.progress = true;
     } else if (a == "--threads") {

@@ -66,6 +66,18 @@ struct DiagnosisOptions {
   // 0.92-0.95 x): the data have nothing left for it to explain. 0: every
   // contender is taken on.
   double contender_settled = 1.0;
+  // Restarts: where even the best contender's fit stays above
+  // contender_settled, each contender whose residual lies within
+  // restart_span x the best's is started again from its fit with one of
+  // its effect's parameters set to zero at a time (the body back at the rig
+  // file's values, the swing states refitted to each start as compare fits
+  // them); the start closest to the records is taken on to convergence.
+  // An effect's parameter trades against the body along curved valleys (a
+  // plate's vertical compliance against the CoG height, its rocking
+  // compliance against the roll and pitch inertia) whose local minima hold
+  // a fit above the noise that a start on the valley's other side leaves
+  // (diagnosis.cpp). 0: no restarts.
+  double restart_span = 2.0;
   double significance = 1e-6;      // p-value of the F test
   double min_explained = 0.10;     // share of the baseline residual
   double min_excess_share = 0.20;  // share of the residual above the noise

@@ -245,6 +245,12 @@ TEST(Diagnosis, OptionsAreChecked) {
   EXPECT_THROW(o.validate(), std::invalid_argument);
   o.contender_settled = 0.0;  // every contender taken on
   EXPECT_NO_THROW(o.validate());
+  o.restart_span = 0.5;  // below the best contender's own residual: restarts none but it, a misreading
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.restart_span = std::nan("");
+  EXPECT_THROW(o.validate(), std::invalid_argument);
+  o.restart_span = 0.0;  // no restarts
+  EXPECT_NO_THROW(o.validate());
   EXPECT_THROW(diagnose::diagnose(trifilar(), {}, {}, {}), std::invalid_argument);
 }
 
