@@ -69,7 +69,13 @@ void print_table(const reduction::ModalAnalysis& a) {
     for (int d = 0; d < 6; ++d) std::printf(" %7.4f", s.effective_mass_fraction(k, d));
     std::printf(" %10.2e %10.2e\n", a.result.residuals(k), a.result.backward_errors(k));
   }
-  std::printf("effective mass fractions of the total in each rigid direction (rotations about the CoG)\n");
+  const Eigen::Index last = s.frequencies_hz.size() - 1;
+  std::printf("%5s %14s %14s", "sum", "", "");
+  for (int d = 0; d < 6; ++d) std::printf(" %7.4f", s.cumulative_fraction(last, d));
+  std::printf("\n");
+  std::printf(
+      "effective mass fractions of the total in each rigid direction (rotations about the CoG); sum: over "
+      "the modes listed\n");
   std::printf("residual ||Kx - lMx|| / ||Kx||; backward ||Kx - lMx|| / ((||K|| + |l| ||M||) ||x||)\n");
   std::printf("M-orthonormality error max|X'MX - I| = %.2e\n", a.result.orthogonality_error);
 }
@@ -112,7 +118,16 @@ int run(const ModesArgs& args) {
     std::fprintf(stderr, "add supports, springs or mass to these DOFs\n");
     return 2;
   }
-  if (a.result.converged_count > 0) print_table(a);
+  if (a.result.converged_count > 0) {
+    print_table(a);
+    for (const auto& w : reduction::rotation_only_modes(a.summary, a.mass.mass)) {
+      if (w.drilling) {
+        std::fprintf(stderr, "rigflex: warning: %s\n", reduction::describe(w, a.summary).c_str());
+      } else {
+        std::printf("note: %s\n", reduction::describe(w, a.summary).c_str());
+      }
+    }
+  }
   const std::vector<reduction::ZeroFrequencyMode> zero = reduction::zero_frequency_modes(m.model, a);
   const bool supported = reduction::is_supported(m.model);
   if (!zero.empty() && supported && !args.allow_mechanism) {

@@ -1,5 +1,7 @@
 #include "reduction/modal_analysis.hpp"
 
+#include "reduction/drilling_share.hpp"
+
 namespace rigflex::reduction {
 
 ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options,
@@ -14,6 +16,7 @@ ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOpti
     std::vector<bool> translation(a.system.dofs.local.size());
     for (size_t i = 0; i < translation.size(); ++i) translation[i] = a.system.dofs.local[i] < 3;
     a.summary = summarize_modes(a.system.M, a.result.eigenvalues, a.result.vectors, R, translation);
+    a.summary.drilling_share = shell_drilling_share(model, a.system.dofs, a.system.M, a.result.vectors);
   }
   return a;
 }

@@ -11,16 +11,28 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
   nlohmann::json freqs = nlohmann::json::array();
   static const char* dirs[6] = {"TX", "TY", "TZ", "RX", "RY", "RZ"};
   for (Eigen::Index k = 0; k < r.eigenvalues.size(); ++k) {
-    nlohmann::json frac = nlohmann::json::object();
-    for (int d = 0; d < 6; ++d) frac[dirs[d]] = s.effective_mass_fraction(k, d);
+    auto by_direction = [&](const Eigen::MatrixXd& x) {
+      nlohmann::json o = nlohmann::json::object();
+      for (int d = 0; d < 6; ++d) o[dirs[d]] = x(k, d);
+      return o;
+    };
     freqs.push_back(s.frequencies_hz(k));
     modes.push_back({{"mode", k + 1},
                      {"frequency_hz", s.frequencies_hz(k)},
                      {"eigenvalue", r.eigenvalues(k)},
                      {"modal_mass", s.modal_mass(k)},
-                     {"effective_mass_fraction", frac},
+                     {"translation_share", s.translation_share(k)},
+                     {"drilling_share", k < s.drilling_share.size() ? s.drilling_share(k) : 0.0},
+                     {"participation_factor", by_direction(s.participation)},
+                     {"effective_mass", by_direction(s.effective_mass)},
+                     {"effective_mass_fraction", by_direction(s.effective_mass_fraction)},
+                     {"cumulative_effective_mass_fraction", by_direction(s.cumulative_fraction)},
                      {"residual", r.residuals(k)},
                      {"backward_error", r.backward_errors(k)}});
+  }
+  nlohmann::json warnings = nlohmann::json::array(), notes = nlohmann::json::array();
+  for (const auto& w : reduction::rotation_only_modes(s, a.mass.mass)) {
+    (w.drilling ? warnings : notes).push_back(describe(w, s));
   }
   return {{"model", model_name},
           {"dofs", a.system.dofs.free_count()},
@@ -38,6 +50,8 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
             {"max_backward_error", r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0},
             {"orthogonality_error", r.orthogonality_error},
             {"message", r.message}}},
+          {"warnings", warnings},
+          {"notes", notes},
           {"frequencies_hz", freqs},
           {"modes", modes}};
 }

@@ -28,6 +28,17 @@ TEST(Cli, ModesOfTheBeamFrameExampleWritesJsonAndParaViewFiles) {
   for (const auto& m : j["modes"]) sum_tx += m["effective_mass_fraction"]["TX"].get<double>();
   EXPECT_GT(sum_tx, 0.0);
   EXPECT_LE(sum_tx, 1.0 + 1e-9);  // fractions of the total cannot exceed it
+  // The running sum ends at the fractions' sum; effective mass = participation^2 (M-normalized shapes).
+  EXPECT_NEAR(j["modes"][5]["cumulative_effective_mass_fraction"]["TX"].get<double>(), sum_tx, 1e-12);
+  const double mass = j["mass_properties"]["mass"].get<double>();
+  for (const auto& m : j["modes"]) {
+    const double g = m["participation_factor"]["TX"].get<double>();
+    EXPECT_NEAR(m["effective_mass"]["TX"].get<double>(), g * g, 1e-9 * mass);
+    const double share = m["translation_share"].get<double>();
+    EXPECT_TRUE(share >= 0.0 && share <= 1.0 + 1e-9) << share;
+  }
+  EXPECT_TRUE(j["warnings"].is_array());
+  EXPECT_NE(r.out.find("sum"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(out / "modes.pvd"));
   for (int k = 1; k <= 6; ++k) EXPECT_TRUE(fs::exists(out / ("mode_00" + std::to_string(k) + ".vtu")));
   for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos);

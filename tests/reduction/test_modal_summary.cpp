@@ -1,0 +1,188 @@
+// The modal summary against a dense solve of a free box beam (30 DOFs):
+// over all its modes the effective masses add up to the beam's mass and
+// inertia in every direction (the completeness of an M-orthonormal basis,
+// exact up to rounding); the Lanczos path gives the dense solve's numbers
+// for the modes it returns; the torsion modes, which move rotations only,
+// are the ones flagged for an implausible modal mass.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <string>
+
+#include "fe/assembly.hpp"
+#include "fe/mass_properties.hpp"
+#include "fe/meshers.hpp"
+#include "fe/node_merger.hpp"
+#include "reduction/modal_analysis.hpp"
+#include "reduction/modal_summary.hpp"
+#include "support/frame_models.hpp"
+
+namespace rigflex {
+namespace {
+
+// A free steel box beam of 2 m along x in 4 elements, 0.2 x 0.12 m (its
+// two bending planes apart: distinct modes).
+fe::Model free_beam() {
+  fe::Model m = test::steel_model();
+  m.beam_sections["box"] = test::box_section("box", 0.2, 0.12, 0.01);
+  fe::NodeMerger merger(m);
+  test::member(m, merger, "beam", fe::Vec3(0, 0, 0), fe::Vec3(2, 0, 0), 4, "box");
+  return m;
+}
+
+struct DenseModes {
+  fe::AssembledSystem system;
+  fe::MassProperties mass;
+  reduction::ModalSummary summary;
+};
+
+DenseModes dense_modes(const fe::Model& m) {
+  DenseModes d;
+  d.system = fe::assemble(m);
+  d.mass = fe::mass_properties(m);
+  const Eigen::MatrixXd K(d.system.K), M(d.system.M);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(K, M);
+  const Eigen::MatrixXd R = fe::rigid_body_modes_free(m, d.system.dofs, d.mass.cog);
+  std::vector<bool> translation(d.system.dofs.local.size());
+  for (size_t i = 0; i < translation.size(); ++i) translation[i] = d.system.dofs.local[i] < 3;
+  d.summary = reduction::summarize_modes(d.system.M, es.eigenvalues().cwiseMax(0.0), es.eigenvectors(), R, translation);
+  return d;
+}
+
+TEST(ModalSummary, EffectiveMassesOfAllModesAddUpToTheMassAndInertia) {
+  const fe::Model m = free_beam();
+  const DenseModes d = dense_modes(m);
+  const auto& s = d.summary;
+  const Eigen::Index n = s.frequencies_hz.size();
+  ASSERT_EQ(n, 30);
+  // Rounding of a 30 x 30 dense solve: 1e-9 of the totals.
+  for (int dir = 0; dir < 6; ++dir) {
+    EXPECT_NEAR(s.cumulative_fraction(n - 1, dir), 1.0, 1e-9) << dir;
+    EXPECT_NEAR(s.effective_mass.col(dir).sum(), s.total_rigid_mass(dir), 1e-9 * s.total_rigid_mass(dir)) << dir;
+  }
+  // The totals are the beam's own: its mass in every translation, its inertia about the CoG in every rotation.
+  for (int dir = 0; dir < 3; ++dir) EXPECT_NEAR(s.total_rigid_mass(dir), d.mass.mass, 1e-9 * d.mass.mass);
+  for (int dir = 0; dir < 3; ++dir) {
+    EXPECT_NEAR(s.total_rigid_mass(3 + dir), d.mass.inertia(dir, dir), 1e-9 * d.mass.inertia(dir, dir));
+  }
+  // Participation factor and effective mass agree (an M-normalized shape: m_i = 1).
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (int dir = 0; dir < 6; ++dir) {
+      EXPECT_NEAR(s.effective_mass(i, dir), s.participation(i, dir) * s.participation(i, dir),
+                  1e-9 * s.total_rigid_mass(dir));
+    }
+  }
+}
+
+TEST(ModalSummary, LanczosGivesTheDenseSolvesNumbers) {
+  const fe::Model m = free_beam();
+  const DenseModes d = dense_modes(m);
+  linalg::EigenOptions o;
+  o.count = 12;
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m, o);
+  ASSERT_TRUE(a.result.converged) << a.result.message;
+  // The elastic modes only (from 7): the six rigid ones share one eigenvalue,
+  // where any basis of the space is right. Distinct beam modes: rounding of
+  // a converged Lanczos pair, 1e-7 of the totals.
+  for (Eigen::Index i = 6; i < 12; ++i) {
+    EXPECT_NEAR(a.summary.frequencies_hz(i), d.summary.frequencies_hz(i), 1e-7 * d.summary.frequencies_hz(i)) << i;
+    for (int dir = 0; dir < 6; ++dir) {
+      EXPECT_NEAR(a.summary.effective_mass(i, dir), d.summary.effective_mass(i, dir),
+                  1e-7 * d.summary.total_rigid_mass(dir))
+          << i << " " << dir;
+    }
+    EXPECT_NEAR(a.summary.translation_share(i), d.summary.translation_share(i), 1e-7) << i;
+  }
+}
+
+TEST(ModalSummary, TheTorsionModesAreFlaggedAndTheBendingModesAreNot) {
+  const fe::Model m = free_beam();
+  const DenseModes d = dense_modes(m);
+  const auto& s = d.summary;
+  const auto flagged = reduction::rotation_only_modes(s, d.mass.mass);
+  // A straight beam's torsion moves its RX rows only: 4 elastic torsion
+  // modes. (The six rigid modes are any basis of their space, mixed by the
+  // dense solver: not looked at.)
+  int torsion = 0;
+  for (Eigen::Index i = 6; i < s.frequencies_hz.size(); ++i) {
+    const bool is_torsion = s.translation_share(i) < 1e-12;
+    const bool is_flagged = std::any_of(flagged.begin(), flagged.end(), [&](const auto& f) { return f.mode == i; });
+    EXPECT_EQ(is_flagged, is_torsion) << "mode " << i << ": translation share " << s.translation_share(i)
+                                      << ", modal mass " << s.modal_mass(i);
+    if (is_torsion) ++torsion;
+    if (!is_torsion && i < 16) {
+      // The lowest ten elastic modes' bending and axial ones: most of their
+      // kinetic energy translates (the box's rotary inertia is small). The
+      // top of a 4-element mesh's spectrum holds rotation-dominated modes
+      // of the discretization (down to 0.5 % translation, 15 x the mass):
+      // not flagged, not looked at here.
+      EXPECT_GT(s.translation_share(i), 0.5) << i;
+      EXPECT_LT(s.modal_mass(i), 3.0 * d.mass.mass) << i;
+    }
+  }
+  EXPECT_EQ(torsion, 4);
+  for (const auto& f : flagged) {
+    const std::string text = reduction::describe(f, s);
+    EXPECT_NE(text.find("mode " + std::to_string(f.mode + 1) + " "), std::string::npos) << text;
+    EXPECT_NE(text.find("rotations"), std::string::npos) << text;
+    EXPECT_FALSE(f.drilling) << text;  // no shells
+  }
+}
+
+// The shell-plate example's cantilever (2 x 1 m, 12 mm steel, 12 x 6
+// 8-node shells, clamped along x = 0) with a 40 kg block at its free corner;
+// `rotary`: the block's inertia about the plate's normal (0.3 kg m^2) too.
+fe::Model cantilever_plate(bool rotary) {
+  fe::Model m = test::steel_model();
+  m.shell_sections["plate"] = {"plate", "steel", 0.012};
+  fe::NodeMerger merger(m);
+  fe::PatchSpec p;
+  p.id = "plate";
+  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(2, 0, 0), fe::Vec3(2, 1, 0), fe::Vec3(0, 1, 0)};
+  p.nx = 12;
+  p.ny = 6;
+  p.quadratic = true;
+  p.section = "plate";
+  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
+  for (int r = 0; r < g.rows; ++r) {
+    if (g.at(r, 0) != 0)
+      m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
+  }
+  fe::PointMass block;
+  block.id = "block";
+  block.node = g.at(g.rows - 1, g.cols - 1);
+  block.mass = 40;
+  block.inertia = {0.2, 0.2, rotary ? 0.3 : 0.0, 0, 0, 0};
+  m.point_masses.push_back(block);
+  return m;
+}
+
+// A point's rotary inertia about a shell's normal loads only the drilling
+// rotation, whose stiffness is the stabilization term: a mode appears that
+// lives there (22 Hz on the example, between the physical ones). It is
+// named a drilling mode; without that inertia no mode is.
+TEST(ModalSummary, ARotaryInertiaAboutAShellsNormalGivesADrillingModeThatIsNamed) {
+  linalg::EigenOptions o;
+  o.count = 10;
+  for (const bool rotary : {true, false}) {
+    const fe::Model m = cantilever_plate(rotary);
+    const reduction::ModalAnalysis a = reduction::run_modal_analysis(m, o);
+    ASSERT_TRUE(a.result.converged) << a.result.message;
+    const auto flagged = reduction::rotation_only_modes(a.summary, a.mass.mass);
+    int drilling = 0;
+    for (const auto& f : flagged) {
+      if (!f.drilling) continue;
+      ++drilling;
+      EXPECT_GT(a.summary.drilling_share(f.mode), 0.99) << f.mode;
+      EXPECT_NE(reduction::describe(f, a.summary).find("drilling mode"), std::string::npos);
+    }
+    EXPECT_EQ(drilling, rotary ? 1 : 0) << "rotary inertia " << rotary;
+    // The plate's bending modes move no drilling rotation.
+    EXPECT_LT(a.summary.drilling_share(0), 1e-6);
+    EXPECT_GT(a.summary.translation_share(0), 0.5);
+  }
+}
+
+}  // namespace
+}  // namespace rigflex
