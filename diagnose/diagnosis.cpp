@@ -280,7 +280,7 @@ void restart_contenders(Fitter& fit, const std::vector<EffectCandidate>& candida
   const int nb = fit.body_size();
   for (size_t i = 0; i < contenders.size(); ++i) {
     const size_t k = contenders[i];
-    const FitPoint at = fits[k].joint.at;
+    const FitPoint& at = fits[k].joint.at;  // read before take_on replaces it
     if (at.data > options.restart_span * best) continue;
     const int p = static_cast<int>(candidates[k].parameters.size());
     progress(options, "restarting " + candidates[k].effect + " from " + std::to_string(p) + " starts (contender " +

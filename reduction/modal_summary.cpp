@@ -21,6 +21,7 @@ ModalSummary summarize_modes(const Eigen::SparseMatrix<double>& M, const Eigen::
   s.cumulative_fraction = Eigen::MatrixXd::Zero(k, 6);
   s.modal_mass = Eigen::VectorXd::Zero(k);
   s.translation_share = Eigen::VectorXd::Zero(k);
+  s.drilling_share = Eigen::VectorXd::Zero(k);  // the shells' are run_modal_analysis's to fill
   for (Eigen::Index i = 0; i < k; ++i) {
     const Eigen::VectorXd phi = vectors.col(i);
     const double mi = phi.dot(M * phi);
@@ -52,7 +53,7 @@ std::vector<RotationOnlyMode> rotation_only_modes(const ModalSummary& s, double 
   if (!(model_mass > 0)) return out;
   for (Eigen::Index i = 0; i < s.modal_mass.size(); ++i) {
     if (!(s.modal_mass(i) > ratio * model_mass)) continue;
-    const double drilling = i < s.drilling_share.size() ? s.drilling_share(i) : 0.0;
+    const double drilling = s.drilling_share(i);
     out.push_back({i, s.modal_mass(i), s.modal_mass(i) / model_mass, s.translation_share(i), drilling, drilling > 0.5});
   }
   return out;

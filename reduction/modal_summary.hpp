@@ -29,8 +29,8 @@ struct ModalSummary {
   // alone (the rotations' rows zeroed); near 0 for a rotation-only mode.
   Eigen::VectorXd translation_share;
   // Share of it in the shells' drilling rotations (each shell node's
-  // rotation about its mean normal); 0 without shells. Filled by
-  // run_modal_analysis (shell_drilling_share), which knows the model.
+  // rotation about its mean normal). Zeros from summarize_modes, which
+  // knows no shells; run_modal_analysis fills it (shell_drilling_share).
   Eigen::VectorXd drilling_share;
   Eigen::VectorXd total_rigid_mass;  // 6: diag of R' M R
 };

@@ -22,7 +22,7 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
                      {"eigenvalue", r.eigenvalues(k)},
                      {"modal_mass", s.modal_mass(k)},
                      {"translation_share", s.translation_share(k)},
-                     {"drilling_share", k < s.drilling_share.size() ? s.drilling_share(k) : 0.0},
+                     {"drilling_share", s.drilling_share(k)},
                      {"participation_factor", by_direction(s.participation)},
                      {"effective_mass", by_direction(s.effective_mass)},
                      {"effective_mass_fraction", by_direction(s.effective_mass_fraction)},
