@@ -29,6 +29,9 @@ struct ModesArgs {
   bool quiet = false;
   bool allow_mechanism = false;
   std::optional<double> max_memory_gib;
+  int subspace = 0;
+  int max_restarts = linalg::EigenOptions{}.max_restarts;
+  bool no_retry = false;
 };
 
 // The elements that hold any of `nodes`, for naming the part a mechanism is in.
@@ -58,6 +61,14 @@ std::string describe(const reduction::ZeroFrequencyMode& z, const fe::Model& mod
     if (parts.size() > 6) s += " and " + std::to_string(parts.size() - 6) + " more elements";
   }
   return s;
+}
+
+void report_not_converged(const std::string& path, const linalg::EigenResult& r) {
+  std::fprintf(stderr, "rigflex: error: %s: the eigen solver stopped: %s\n", path.c_str(), r.message.c_str());
+  std::fprintf(stderr,
+               "  options: --subspace N (the basis), --block B, --max-restarts N, --shift-hz F; %d automatic "
+               "retr%s run; nothing written\n",
+               r.retries, r.retries == 1 ? "y" : "ies");
 }
 
 void print_table(const reduction::ModalAnalysis& a) {
@@ -93,6 +104,9 @@ int run(const ModesArgs& args) {
   }
   opt.count = args.count;
   opt.block_size = args.block;
+  opt.subspace = args.subspace;
+  opt.max_restarts = args.max_restarts;
+  opt.automatic_retry = !args.no_retry;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
   if (!args.quiet)
     opt.progress = [](const linalg::EigenProgress& p) {
@@ -118,7 +132,15 @@ int run(const ModesArgs& args) {
     std::fprintf(stderr, "add supports, springs or mass to these DOFs\n");
     return 2;
   }
-  if (a.result.converged_count > 0) {
+  if (!a.result.converged) {
+    report_not_converged(args.model, a.result);
+    return 1;
+  }
+  if (a.result.retries > 0) {
+    std::printf("note: the eigen solver converged on an automatic retry with a larger basis; the first attempt: %s\n",
+                a.result.first_attempt.c_str());
+  }
+  {
     print_table(a);
     for (const auto& w : reduction::rotation_only_modes(a.summary, a.mass.mass)) {
       if (w.drilling) {
@@ -147,8 +169,7 @@ int run(const ModesArgs& args) {
     std::printf("modes 1-%zu have zero frequency: %s\n", zero.size(),
                 supported ? "a mechanism, kept (--allow-mechanism)" : "rigid-body motions of the free model");
   }
-  if (!a.result.converged) std::fprintf(stderr, "rigflex: warning: %s\n", a.result.message.c_str());
-  if (folder && a.result.converged_count > 0) {
+  if (folder) {
     const std::filesystem::path dir(args.out);
     io::FileBatch batch;
     nlohmann::json j = report::modes_json(m.name, a);
@@ -161,7 +182,7 @@ int run(const ModesArgs& args) {
     std::printf("wrote %s/modes.json, modes.pvd and %ld mode_NNN.vtu\n", args.out.c_str(),
                 static_cast<long>(a.result.vectors.cols()));
   }
-  return a.result.converged ? 0 : 1;
+  return 0;
 }
 
 }  // namespace
@@ -176,6 +197,13 @@ void add_modes_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--block", args->block,
                   "Lanczos block size; 0 (default): chosen from the fill of the factor, see docs/eigen-solver.md")
       ->check(non_negative());
+  cmd->add_option("--subspace", args->subspace,
+                  "Lanczos basis size; 0 (default): max(2 count, count + 20, count + 2 block)")
+      ->check(non_negative());
+  cmd->add_option("--max-restarts", args->max_restarts, "Lanczos thick restarts before it gives up (default 200)")
+      ->check(non_negative());
+  cmd->add_flag("--no-retry", args->no_retry,
+                "no automatic retry with a larger basis when Lanczos stalls (see docs/eigen-solver.md)");
   cmd->add_flag("--quiet", args->quiet, "no progress on stderr");
   cmd->add_option("--max-memory", args->max_memory_gib,
                   "GiB the assembly and the factor may use (default: the machine's memory); a larger model is "

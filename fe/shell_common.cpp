@@ -196,10 +196,12 @@ MatrixXd bending_B(const Eigen::MatrixX2d& dNxy) {
 //    grows with gamma: a square box in torsion (4 MITC4 per side,
 //    test_shell_box.cpp) is 1.65 % too stiff with gamma = 1, 0.36 % with
 //    0.1 and 0.06 % with 1e-2. Commercial codes use
-//    1e-5 .. 1e-3 G t A for the same reason (Nastran K6ROT). Being a
-//    penalty against the rotary inertia rho t^3/12, it puts the drilling
-//    modes at f >= sqrt(12 gamma G / rho) / (2 pi t) = 170 Hz m / t
-//    (3.4 kHz for t = 50 mm): far above the structural modes of a frame.
+//    1e-5 .. 1e-3 G t A for the same reason (Nastran K6ROT).
+//  - the drilling rotation carries no mass (shell_mass), so the penalty
+//    makes no modes of its own: against a rotary inertia rho t^3/12 it put
+//    a band at sqrt(12 gamma G / rho) / (2 pi t) = 170 Hz m / t, among the
+//    physical modes of plates thicker than about 0.1 m. A point mass's
+//    rotary inertia about the normal still meets only this penalty.
 double drilling_modulus(const ShellProperties& p) {
   constexpr double gamma = 1e-2;
   return gamma * p.E / (2.0 * (1.0 + p.nu)) * p.thickness;
@@ -249,13 +251,20 @@ MatrixXd shell_mass(const LocalFrame& f, ShapeFn shape, int rule, const ShellPro
   MatrixXd G = shape_gram(f, shape, rule);
   if (p.mass == MassKind::Lumped) G = lump(G);
   const double translational = p.rho * p.thickness;
+  // Rotary inertia rho t^3/12 about the two in-plane axes only: it is the
+  // inertia of the normal fibre turning about them. About the normal the
+  // fibre turns about its own axis and has none; the in-plane rotation of
+  // the material is carried by the translations' mass already. Giving the
+  // drilling rotation rho t^3/12 as well (as before) put a band of spurious
+  // drilling modes at sqrt(12 gamma G / rho) / (2 pi t) = 170 Hz m / t, among
+  // the physical modes of thick plates; massless, the drilling DOFs give
+  // infinite eigenvalues, which the eigen solver never returns.
   const double rotary = p.rho * std::pow(p.thickness, 3) / 12.0;
   for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j)
-      for (int a = 0; a < 3; ++a) {
-        M(dof(i, a), dof(j, a)) = translational * G(i, j);
-        M(dof(i, a + 3), dof(j, a + 3)) = rotary * G(i, j);
-      }
+    for (int j = 0; j < n; ++j) {
+      for (int a = 0; a < 3; ++a) M(dof(i, a), dof(j, a)) = translational * G(i, j);
+      for (int a : {kTx, kTy}) M(dof(i, a), dof(j, a)) = rotary * G(i, j);
+    }
   return M;
 }
 

@@ -63,6 +63,15 @@ struct EigenOptions {
   // Called after the analysis with the factor's predicted size and flops;
   // optional.
   std::function<void(const FactorStatistics&)> analyzed;
+  // When the iteration stops at max_restarts, diagnose why (EigenResult::
+  // stall) and, after a cluster or slow convergence, run once more on the
+  // same factor with four times the basis (and a block as large as the
+  // cluster, up to 8) from a fresh start. Never for a mechanism or a
+  // near-singular shift (a fault of the problem that a basis does not cure),
+  // never where the larger basis and the factor would exceed
+  // max_factor_bytes. Every pair returned is checked as always;
+  // EigenResult::retries and first_attempt say what happened.
+  bool automatic_retry = true;
 
   // Throws std::invalid_argument naming the offending option.
   void validate(Eigen::Index n) const;
@@ -75,6 +84,23 @@ struct EigenOptions {
   // Basis size actually used for a problem of size n and block size `block`
   // (from resolved_block).
   int resolved_subspace(Eigen::Index n, int block) const;
+};
+
+// Why a Lanczos run stopped short of `count` pairs, and what to change
+// (diagnose_stall in lanczos_stall.hpp). Filled only when not converged.
+enum class StallCause {
+  none,
+  clustered,            // the unconverged wanted pairs sit in a cluster of close eigenvalues
+  near_singular_shift,  // the shift lies just below an eigenvalue: one direction swamps the rest
+  mechanism,            // more near-zero eigenvalues than a free body's six rigid-body modes
+  slow_convergence,     // none of the above: relative gaps too small for the basis and restarts given
+};
+struct EigenStall {
+  StallCause cause = StallCause::none;
+  std::string why;        // what the iteration saw, with frequencies in Hz
+  std::string advice;     // what to change (EigenOptions fields; the CLI maps them to its options)
+  double cluster_hz = 0;  // clustered: the frequency the cluster sits at
+  int cluster_size = 0;   // clustered: Ritz values within the cluster width
 };
 
 struct EigenResult {
@@ -107,6 +133,11 @@ struct EigenResult {
   double factor_seconds = 0, iteration_seconds = 0;
   std::vector<Eigen::Index> mechanism_dofs;  // filled when the shifted matrix was singular
   bool over_memory_limit = false;            // refused by EigenOptions::max_factor_bytes; message says why
+  EigenStall stall;                          // when not converged: the cause and the remedy
+  // Automatic retries (EigenOptions::automatic_retry) run; when a retry
+  // converged, first_attempt holds why the first run stopped.
+  int retries = 0;
+  std::string first_attempt;
 
   // sqrt(max(lambda, 0)) / (2 pi): rigid-body modes whose lambda rounds to a
   // tiny negative value report 0 Hz.

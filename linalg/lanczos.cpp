@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "linalg/block_kernels.hpp"
 #include "linalg/eigen_postprocess.hpp"
 #include "linalg/eigen_solver.hpp"
+#include "linalg/lanczos_stall.hpp"
+#include "linalg/pencil_scale.hpp"
 #include "linalg/stopwatch.hpp"
 #include "linalg/thick_restart_lanczos.hpp"
 
@@ -73,7 +76,80 @@ EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
   r.message = std::move(outcome.message);
   r.restarts = outcome.restarts;
   r.operator_applications = outcome.applications;
+  if (!r.converged && outcome.theta.size() > 0) {
+    StallFacts facts;
+    facts.shift = r.shift;
+    facts.theta = std::move(outcome.theta);
+    facts.residual = std::move(outcome.residual);
+    facts.count = options.count;
+    facts.converged = static_cast<int>(r.vectors.cols());
+    facts.basis = static_cast<int>(settings.basis);
+    facts.block = static_cast<int>(settings.block);
+    facts.restarts = r.restarts;
+    facts.scale = pencil_scale(K, M);
+    r.stall = diagnose_stall(facts);
+    r.message += ": " + r.stall.why + "; " + r.stall.advice;
+  }
   r.iteration_seconds = seconds_since(start);
+  return r;
+}
+
+// The retry on the same factor for a cluster or slow convergence: four
+// times the basis (at least room for two copies of the cluster beside the
+// wanted pairs), a block as large as the cluster up to 8 (a block Lanczos
+// of block b resolves b close eigenvalues together), a fresh start vector.
+// Why four: on 700 eigenvalues spread over 1 % below the wanted boundary
+// (tests/linalg/test_lanczos_stall.cpp) twice the basis stalled at the same
+// pairs, four times converged; a Krylov space grows its polynomial filter
+// faster than linearly with the basis between restarts. None when the basis
+// cannot grow or it and the factor would exceed the memory the caller allowed.
+std::optional<EigenOptions> retry_on_factor(const EigenOptions& options, const EigenResult& r, Index n,
+                                            double factor_nnz) {
+  if (r.stall.cause != StallCause::clustered && r.stall.cause != StallCause::slow_convergence) return std::nullopt;
+  constexpr int kMaxRetryBlock = 8;
+  const int basis = options.resolved_subspace(n, r.block_size);
+  int block = r.block_size;
+  if (r.stall.cause == StallCause::clustered) block = std::max(block, std::min(r.stall.cluster_size, kMaxRetryBlock));
+  const long wanted = std::max({static_cast<long>(kRetryBasisGrowth) * basis,
+                                static_cast<long>(options.count) + 2L * r.stall.cluster_size + 2L * block,
+                                static_cast<long>(options.count) + 2L * block});
+  const long grown = std::min<long>(wanted, n);
+  if (grown <= basis) return std::nullopt;
+  const double bytes = 8.0 * (static_cast<double>(n) * static_cast<double>(grown + block) + factor_nnz);
+  if (options.max_factor_bytes > 0 && bytes > options.max_factor_bytes) return std::nullopt;
+  EigenOptions retry = options;
+  retry.shift = r.shift;
+  retry.subspace = static_cast<int>(grown);
+  retry.block_size = grown >= options.count + 2L * block ? block : 1;
+  retry.seed = options.seed + 1;
+  return retry;
+}
+
+// Keeps the retry's result where it converged or got further; the counts of
+// work add up either way.
+EigenResult take_retry(EigenResult first, EigenResult retry) {
+  retry.restarts += first.restarts;
+  retry.operator_applications += first.operator_applications;
+  retry.iteration_seconds += first.iteration_seconds;
+  retry.retries = first.retries + 1;
+  retry.first_attempt = first.message;
+  if (retry.converged || retry.vectors.cols() > first.vectors.cols()) return retry;
+  first.restarts = retry.restarts;
+  first.operator_applications = retry.operator_applications;
+  first.iteration_seconds = retry.iteration_seconds;
+  first.retries = retry.retries;
+  first.message += " (an automatic retry did not get further: " + retry.message + ")";
+  return first;
+}
+
+EigenResult iterate_with_retry(const SpMat& K, const SpMat& M, const EigenOptions& options,
+                               SparseCholesky& factor_at_shift) {
+  EigenResult r = iterate(K, M, options, factor_at_shift);
+  if (r.converged || !options.automatic_retry) return r;
+  if (const std::optional<EigenOptions> retry =
+          retry_on_factor(options, r, K.rows(), factor_at_shift.statistics().factor_nnz)) {
+    return take_retry(std::move(r), iterate(K, M, *retry, factor_at_shift));
+  }
   return r;
 }
 
@@ -123,7 +199,7 @@ void finish(const SpMat& K, const SpMat& M, EigenResult& r) {
 
 EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& options,
                           SparseCholesky& factor_at_shift) {
-  EigenResult r = iterate(K, M, options, factor_at_shift);
+  EigenResult r = iterate_with_retry(K, M, options, factor_at_shift);
   finish(K, M, r);
   return r;
 }
@@ -153,7 +229,7 @@ EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& op
   }
   EigenOptions at_shift = options;
   at_shift.shift = pencil.shift;
-  EigenResult r = iterate(K, M, at_shift, *factor);
+  EigenResult r = iterate_with_retry(K, M, at_shift, *factor);
   factor.reset();
   finish(K, M, r);
   r.factor_seconds = factor_seconds;

@@ -468,6 +468,10 @@ LanczosOutcome ThickRestartLanczos::finish(const RitzPairs& ritz, Index pairs, b
   out.converged = converged;
   out.message = std::move(message);
   out.applications = applications_;
+  if (!converged) {
+    out.theta = ritz.theta;
+    out.residual = ritz.residual;
+  }
   report(pairs);
   return out;
 }

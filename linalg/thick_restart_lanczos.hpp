@@ -27,6 +27,9 @@ struct LanczosOutcome {
   std::string message;
   int restarts = 0;
   long applications = 0;  // of Op to a vector
+  // When not converged: the last Ritz values of Op (descending) and their
+  // residual norms, for diagnose_stall.
+  Eigen::VectorXd theta, residual;
 };
 
 // Lowest `count` eigenvectors of the pencil whose K - sigma M is factorized

@@ -45,6 +45,8 @@ nlohmann::json modes_json(const std::string& model_name, const reduction::ModalA
             {"shift", r.shift},
             {"block_size", r.block_size},
             {"restarts", r.restarts},
+            {"automatic_retries", r.retries},
+            {"first_attempt", r.first_attempt},
             {"operator_applications", r.operator_applications},
             {"max_residual", r.residuals.size() ? r.residuals.maxCoeff() : 0.0},
             {"max_backward_error", r.backward_errors.size() ? r.backward_errors.maxCoeff() : 0.0},

@@ -71,37 +71,66 @@ TEST_P(ShellElementCase, RigidMotionsProduceNoForce) {
   }
 }
 
-// Total translational mass rho t A in every direction and rotary inertia
-// rho t^3/12 A about every axis, consistent and lumped (exact quadrature
-// of polynomials: round-off tolerance).
+// Total translational mass rho t A in every direction; rotary inertia
+// rho t^3/12 A about the in-plane axes and none about the normal (a normal
+// fibre has no inertia about its own axis), so about global axis d it is
+// rho t^3/12 A (1 - n_d^2). Consistent and lumped (exact quadrature of
+// polynomials: round-off tolerance).
 TEST_P(ShellElementCase, MassTotals) {
   const std::vector<Vec3> x = nodes();
   const double t = GetParam().thickness;
   const double A = corner_area(x);
+  const Vec3 normal = (x[2] - x[0]).cross(x[3] - x[1]).normalized();
   for (MassKind kind : {MassKind::Consistent, MassKind::Lumped}) {
     const ElementMatrices e = element(x, props(t, kind));
     for (int d = 0; d < 6; ++d) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(e.M.rows());
       for (size_t i = 0; i < x.size(); ++i) u(6 * static_cast<Eigen::Index>(i) + d) = 1.0;
-      const double expected = 8000.0 * t * A * (d < 3 ? 1.0 : t * t / 12.0);
-      EXPECT_NEAR(u.dot(e.M * u), expected, 1e-12 * expected) << "dof " << d;
+      const double rotary = t * t / 12.0 * (1.0 - normal(d % 3) * normal(d % 3));
+      const double expected = 8000.0 * t * A * (d < 3 ? 1.0 : rotary);
+      EXPECT_NEAR(u.dot(e.M * u), expected, 1e-12 * 8000.0 * t * A * (d < 3 ? 1.0 : t * t / 12.0)) << "dof " << d;
     }
-    // Rotary inertia on every DOF makes M positive definite.
+    // Massless exactly along each node's drilling rotation, positive
+    // definite on everything else.
     const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(e.M).eigenvalues();
-    EXPECT_GT(ev(0), 0.0);
+    const auto drilling = static_cast<Eigen::Index>(x.size());
+    EXPECT_LT(ev.head(drilling).cwiseAbs().maxCoeff(), 1e-14 * ev(ev.size() - 1));
+    EXPECT_GT(ev(drilling), 1e-6 * 8000.0 * t * t * t / 12.0 * A / static_cast<double>(x.size()));
+    for (Eigen::Index i = 0; i < drilling; ++i) {
+      Eigen::VectorXd spin = Eigen::VectorXd::Zero(e.M.rows());
+      spin.segment<3>(6 * i + 3) = normal;
+      EXPECT_LT((e.M * spin).norm(), 1e-14 * e.M.norm()) << "node " << i;
+    }
   }
   const ElementMatrices none = element(x, props(t, MassKind::None));
   EXPECT_EQ(none.M.norm(), 0.0);
 }
 
-// Lumped mass is diagonal in global axes with positive entries; for the
-// 8-node element that relies on HRZ scaling (row sums would give negative
-// corner masses).
+// Lumped mass couples no two nodes and no translation to a rotation; the
+// translations are diagonal with positive entries (for the 8-node element
+// that relies on HRZ scaling: row sums would give negative corner masses),
+// the rotations of a node are c (I - n n'), c > 0: diagonal in the
+// element's own axes.
 TEST_P(ShellElementCase, LumpedMassIsDiagonalAndPositive) {
-  const ElementMatrices e = element(nodes(), props(GetParam().thickness, MassKind::Lumped));
-  const Eigen::MatrixXd off = e.M - Eigen::MatrixXd(e.M.diagonal().asDiagonal());
-  EXPECT_LT(off.cwiseAbs().maxCoeff(), 1e-14 * e.M.diagonal().maxCoeff());
-  EXPECT_GT(e.M.diagonal().minCoeff(), 0.0);
+  const std::vector<Vec3> x = nodes();
+  const ElementMatrices e = element(x, props(GetParam().thickness, MassKind::Lumped));
+  const Vec3 normal = (x[2] - x[0]).cross(x[3] - x[1]).normalized();
+  const double scale = e.M.diagonal().maxCoeff();
+  for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(x.size()); ++i) {
+    Eigen::MatrixXd off = e.M.middleRows(6 * i, 6);
+    off.middleCols(6 * i + 3, 3).setZero();
+    off.middleCols(6 * i, 3).setZero();
+    EXPECT_LT(off.cwiseAbs().maxCoeff(), 1e-14 * scale) << "node " << i;
+    const Eigen::Matrix3d translation = e.M.block<3, 3>(6 * i, 6 * i);
+    EXPECT_LT((translation - Eigen::Matrix3d(translation.diagonal().asDiagonal())).cwiseAbs().maxCoeff(),
+              1e-14 * scale);
+    EXPECT_GT(translation.diagonal().minCoeff(), 0.0);
+    const Eigen::Matrix3d rotation = e.M.block<3, 3>(6 * i + 3, 6 * i + 3);
+    const double c = rotation.trace() / 2.0;
+    EXPECT_GT(c, 0.0);
+    const Eigen::Matrix3d expected = c * (Eigen::Matrix3d::Identity() - normal * normal.transpose());
+    EXPECT_LT((rotation - expected).cwiseAbs().maxCoeff(), 1e-12 * c) << "node " << i;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Shells, ShellElementCase,

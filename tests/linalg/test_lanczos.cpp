@@ -179,10 +179,13 @@ TEST_P(Lanczos, RestartLimitGivesConvergedPrefixOnly) {
   EigenOptions o = options(10);
   o.subspace = 10 + GetParam();
   o.max_restarts = 0;
+  o.automatic_retry = false;
   const EigenResult r = solve_lanczos(p.K, p.M, o);
   EXPECT_FALSE(r.converged);
   EXPECT_LT(r.converged_count, 10);
   EXPECT_NE(r.message.find("not converged"), std::string::npos) << r.message;
+  EXPECT_NE(r.stall.cause, StallCause::none);
+  EXPECT_NE(r.message.find(r.stall.advice), std::string::npos) << r.message;
   const EigenResult ref = oracle(p, 10, -0.01);
   testing::expect_same_eigenvalues(r.eigenvalues, ref.eigenvalues.head(r.converged_count),
                                    kEigenvalue, 0.0);

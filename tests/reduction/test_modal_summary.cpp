@@ -135,20 +135,7 @@ TEST(ModalSummary, TheTorsionModesAreFlaggedAndTheBendingModesAreNot) {
 // `rotary`: the block's inertia about the plate's normal (0.3 kg m^2) too.
 fe::Model cantilever_plate(bool rotary) {
   fe::Model m = test::steel_model();
-  m.shell_sections["plate"] = {"plate", "steel", 0.012};
-  fe::NodeMerger merger(m);
-  fe::PatchSpec p;
-  p.id = "plate";
-  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(2, 0, 0), fe::Vec3(2, 1, 0), fe::Vec3(0, 1, 0)};
-  p.nx = 12;
-  p.ny = 6;
-  p.quadratic = true;
-  p.section = "plate";
-  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
-  for (int r = 0; r < g.rows; ++r) {
-    if (g.at(r, 0) != 0)
-      m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
-  }
+  const fe::PatchNodes g = test::clamped_plate(m, 2.0, 1.0, 0.012, 12, 6, true);
   fe::PointMass block;
   block.id = "block";
   block.node = g.at(g.rows - 1, g.cols - 1);

@@ -167,4 +167,23 @@ fe::Model rig_carrying_frame(int elements_per_member) {
   return m;
 }
 
+fe::PatchNodes clamped_plate(fe::Model& m, double length, double width, double thickness, int nx, int ny,
+                             bool quadratic) {
+  m.shell_sections["plate"] = {"plate", "steel", thickness};
+  fe::NodeMerger merger(m);
+  fe::PatchSpec p;
+  p.id = "plate";
+  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(length, 0, 0), fe::Vec3(length, width, 0), fe::Vec3(0, width, 0)};
+  p.nx = nx;
+  p.ny = ny;
+  p.quadratic = quadratic;
+  p.section = "plate";
+  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
+  for (int r = 0; r < g.rows; ++r) {
+    if (g.at(r, 0) != 0)
+      m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
+  }
+  return g;
+}
+
 }  // namespace rigflex::test

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "fe/meshers.hpp"
 #include "fe/model.hpp"
 #include "fe/node_merger.hpp"
 
@@ -56,5 +57,11 @@ fe::Model rig_fixed_frame(int elements_per_member = 4);
 // lower joints and a 400 kg point mass with inertia at mid-span: floating,
 // node set "lower_joints".
 fe::Model rig_carrying_frame(int elements_per_member = 4);  // even: a node at the centre
+
+// A length x width plate in the xy plane from the origin, section "plate"
+// (steel, `thickness`), nx x ny shells (8-node if `quadratic`), clamped
+// (all six DOFs) along x = 0. Returns the node grid.
+fe::PatchNodes clamped_plate(fe::Model& m, double length, double width, double thickness, int nx, int ny,
+                             bool quadratic);
 
 }  // namespace rigflex::test

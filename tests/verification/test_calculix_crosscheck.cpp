@@ -285,18 +285,7 @@ TEST(CalculixCrossCheck, BeamFrame) {
 // (b), (c): a 2 m x 1 m x 12 mm steel plate clamped along a short edge.
 fe::Model cantilever_plate(bool quadratic, int nx, int ny, bool block) {
   fe::Model m = steel_model();
-  m.shell_sections["plate"] = {"plate", "steel", 0.012};
-  fe::NodeMerger merger(m);
-  fe::PatchSpec p;
-  p.id = "plate";
-  p.corners = {fe::Vec3(0, 0, 0), fe::Vec3(2, 0, 0), fe::Vec3(2, 1, 0), fe::Vec3(0, 1, 0)};
-  p.nx = nx;
-  p.ny = ny;
-  p.quadratic = quadratic;
-  p.section = "plate";
-  const fe::PatchNodes g = fe::mesh_shell_patch(m, merger, p);
-  for (int r = 0; r < g.rows; ++r)
-    if (g.at(r, 0) != 0) m.supports.push_back({"root" + std::to_string(r), g.at(r, 0), {true, true, true, true, true, true}});
+  const fe::PatchNodes g = test::clamped_plate(m, 2.0, 1.0, 0.012, nx, ny, quadratic);
   if (block) {
     // A 20 kg block 0.1 m above the middle of the free edge, rigidly coupled
     // to three edge nodes (couplings on shell nodes, MASS element).
