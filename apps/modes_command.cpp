@@ -140,14 +140,12 @@ int run(const ModesArgs& args) {
     std::printf("note: the eigen solver converged on an automatic retry with a larger basis; the first attempt: %s\n",
                 a.result.first_attempt.c_str());
   }
-  {
-    print_table(a);
-    for (const auto& w : reduction::rotation_only_modes(a.summary, a.mass.mass)) {
-      if (w.drilling) {
-        std::fprintf(stderr, "rigflex: warning: %s\n", reduction::describe(w, a.summary).c_str());
-      } else {
-        std::printf("note: %s\n", reduction::describe(w, a.summary).c_str());
-      }
+  print_table(a);
+  for (const auto& w : reduction::rotation_only_modes(a.summary, a.mass.mass)) {
+    if (w.drilling) {
+      std::fprintf(stderr, "rigflex: warning: %s\n", reduction::describe(w, a.summary).c_str());
+    } else {
+      std::printf("note: %s\n", reduction::describe(w, a.summary).c_str());
     }
   }
   const std::vector<reduction::ZeroFrequencyMode> zero = reduction::zero_frequency_modes(m.model, a);

@@ -106,14 +106,9 @@ EigenResult iterate(const SpMat& K, const SpMat& M, const EigenOptions& options,
 std::optional<EigenOptions> retry_on_factor(const EigenOptions& options, const EigenResult& r, Index n,
                                             double factor_nnz) {
   if (r.stall.cause != StallCause::clustered && r.stall.cause != StallCause::slow_convergence) return std::nullopt;
-  constexpr int kMaxRetryBlock = 8;
   const int basis = options.resolved_subspace(n, r.block_size);
-  int block = r.block_size;
-  if (r.stall.cause == StallCause::clustered) block = std::max(block, std::min(r.stall.cluster_size, kMaxRetryBlock));
-  const long wanted = std::max({static_cast<long>(kRetryBasisGrowth) * basis,
-                                static_cast<long>(options.count) + 2L * r.stall.cluster_size + 2L * block,
-                                static_cast<long>(options.count) + 2L * block});
-  const long grown = std::min<long>(wanted, n);
+  const int block = retry_block(r.stall, r.block_size);
+  const long grown = std::min<long>(retry_basis(r.stall, options.count, basis, r.block_size), n);
   if (grown <= basis) return std::nullopt;
   const double bytes = 8.0 * (static_cast<double>(n) * static_cast<double>(grown + block) + factor_nnz);
   if (options.max_factor_bytes > 0 && bytes > options.max_factor_bytes) return std::nullopt;
@@ -125,21 +120,22 @@ std::optional<EigenOptions> retry_on_factor(const EigenOptions& options, const E
   return retry;
 }
 
-// Keeps the retry's result where it converged or got further; the counts of
-// work add up either way.
+// Keeps the retry's result where it converged or got further, else the
+// first one's; the counts of work add up either way.
 EigenResult take_retry(EigenResult first, EigenResult retry) {
-  retry.restarts += first.restarts;
-  retry.operator_applications += first.operator_applications;
-  retry.iteration_seconds += first.iteration_seconds;
-  retry.retries = first.retries + 1;
-  retry.first_attempt = first.message;
-  if (retry.converged || retry.vectors.cols() > first.vectors.cols()) return retry;
-  first.restarts = retry.restarts;
-  first.operator_applications = retry.operator_applications;
-  first.iteration_seconds = retry.iteration_seconds;
-  first.retries = retry.retries;
-  first.message += " (an automatic retry did not get further: " + retry.message + ")";
-  return first;
+  const bool better = retry.converged || retry.vectors.cols() > first.vectors.cols();
+  EigenResult& kept = better ? retry : first;
+  const EigenResult& other = better ? first : retry;
+  kept.restarts += other.restarts;
+  kept.operator_applications += other.operator_applications;
+  kept.iteration_seconds += other.iteration_seconds;
+  kept.retries = first.retries + 1;
+  if (better) {
+    kept.first_attempt = first.message;
+  } else {
+    kept.message += " (an automatic retry did not get further: " + retry.message + ")";
+  }
+  return std::move(kept);
 }
 
 EigenResult iterate_with_retry(const SpMat& K, const SpMat& M, const EigenOptions& options,

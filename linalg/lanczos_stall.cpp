@@ -95,8 +95,8 @@ EigenStall diagnose_stall(const StallFacts& f) {
             ": shift-invert Lanczos separates eigenvalues by their relative gaps, and these are smaller (" +
             progress_text(f) + ")";
     s.advice = "enlarge the basis (now " + std::to_string(f.basis) + ") to " +
-               std::to_string(std::max(kRetryBasisGrowth * f.basis, f.count + 2 * s.cluster_size)) +
-               " vectors or more and the block to " + std::to_string(std::min(s.cluster_size, 8)) +
+               std::to_string(retry_basis(s, f.count, f.basis, f.block)) + " vectors or more and the block to " +
+               std::to_string(retry_block(s, f.block)) +
                "; a cluster of unphysical modes is better removed at its cause";
     return s;
   }
@@ -109,8 +109,18 @@ EigenStall diagnose_stall(const StallFacts& f) {
   }
   s.why += " (" + progress_text(f) + ")";
   s.advice = "enlarge the basis (now " + std::to_string(f.basis) + ") to " +
-             std::to_string(kRetryBasisGrowth * f.basis) + " vectors or more, or raise the restart limit";
+             std::to_string(retry_basis(s, f.count, f.basis, f.block)) + " vectors or more, or raise the restart limit";
   return s;
+}
+
+int retry_block(const EigenStall& stall, int block) {
+  if (stall.cause != StallCause::clustered) return block;
+  return std::max(block, std::min(stall.cluster_size, kMaxRetryBlock));
+}
+
+long retry_basis(const EigenStall& stall, int count, int basis, int block) {
+  const int b = retry_block(stall, block);
+  return std::max(static_cast<long>(kRetryBasisGrowth) * basis, count + 2L * stall.cluster_size + 2L * b);
 }
 
 }  // namespace rigflex::linalg

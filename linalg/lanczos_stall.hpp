@@ -32,13 +32,21 @@ inline constexpr int kClusterMembers = 3;
 // to it is below this fraction of the highest wanted one's.
 inline constexpr double kNearSingularShift = 1e-8;
 // The automatic retry after a cluster or slow convergence takes this many
-// times the basis (see retry_on_factor in lanczos.cpp for why four), and the
-// advice names the same size.
+// times the basis (see retry_on_factor in lanczos.cpp for why four) and a
+// block as large as the cluster, up to kMaxRetryBlock.
 inline constexpr int kRetryBasisGrowth = 4;
+inline constexpr int kMaxRetryBlock = 8;
 // A free body has six rigid-body modes; more zero eigenvalues are a mechanism.
 inline constexpr int kRigidBodyModes = 6;
 
 // The cause, a sentence on what was seen and one on what to do.
 EigenStall diagnose_stall(const StallFacts& facts);
+
+// The block and the basis of the retry after `stall` (and of the advice,
+// which names the same): the cluster's size up to kMaxRetryBlock, not below
+// `block`; kRetryBasisGrowth times `basis`, with room beside the `count`
+// wanted pairs for two copies of the cluster and two retry blocks.
+int retry_block(const EigenStall& stall, int block);
+long retry_basis(const EigenStall& stall, int count, int basis, int block);
 
 }  // namespace rigflex::linalg
