@@ -44,6 +44,9 @@ std::vector<std::string> elements_at(const fe::Model& model, const std::vector<f
   for (const fe::ShellElement& s : model.shells) {
     if (std::any_of(s.nodes.begin(), s.nodes.end(), has)) out.push_back("shell " + s.id);
   }
+  for (const fe::SolidElement& s : model.solids) {
+    if (std::any_of(s.nodes.begin(), s.nodes.end(), has)) out.push_back("solid " + s.id);
+  }
   return out;
 }
 

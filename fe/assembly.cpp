@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "fe/distributing_coupling.hpp"
 #include "fe/element_loop.hpp"
 #include "fe/error.hpp"
 
@@ -59,6 +60,8 @@ std::vector<DofState> classify_dofs(const Model& model) {
     for (NodeId d : c.dependents)
       for (int k = 0; k < 6; ++k)
         if (c.dofs[static_cast<size_t>(k)]) state[6 * model.node_index(d) + static_cast<size_t>(k)] = DofState::Dependent;
+  for (const DistributingCoupling& c : model.distributing_couplings)
+    for (int k = 0; k < 6; ++k) state[6 * model.node_index(c.reference) + static_cast<size_t>(k)] = DofState::Dependent;
   for (const Support& s : model.supports) {
     for (int k = 0; k < 6; ++k) {
       if (!s.fixed[static_cast<size_t>(k)]) continue;
@@ -66,7 +69,9 @@ std::vector<DofState> classify_dofs(const Model& model) {
       if (st == DofState::Dependent)
         throw ModelError({"support", s.id, "dofs"},
                          "support '" + s.id + "' fixes " + std::string(dof_name(k)) + " of node " +
-                             std::to_string(s.node) + ", which a rigid coupling drives; support the reference node");
+                             std::to_string(s.node) +
+                             ", which a coupling drives; support a rigid coupling's reference, or a distributing "
+                             "coupling's nodes");
       st = DofState::Fixed;
     }
   }
@@ -110,6 +115,24 @@ DofMap build_dof_map(const Model& model) {
         }
       }
     }
+  }
+  // A distributing coupling's reference: rows of G over its nodes' free
+  // translations (held ones contribute nothing; validate() refuses nodes
+  // that another coupling drives).
+  for (const DistributingCoupling& c : model.distributing_couplings) {
+    std::vector<Vec3> x;
+    for (NodeId n : c.nodes) x.push_back(model.position(n));
+    const Eigen::MatrixXd G = *distributing_link(model.position(c.reference), x, c.weights);
+    const size_t ref = 6 * model.node_index(c.reference);
+    for (size_t i = 0; i < c.nodes.size(); ++i)
+      for (int b = 0; b < 3; ++b) {
+        const long col = map.full_to_free[6 * model.node_index(c.nodes[i]) + static_cast<size_t>(b)];
+        if (col < 0) continue;
+        for (int a = 0; a < 6; ++a) {
+          const double g = G(a, 3 * static_cast<Eigen::Index>(i) + b);
+          if (g != 0.0) t.emplace_back(static_cast<Eigen::Index>(ref + static_cast<size_t>(a)), col, g);
+        }
+      }
   }
   map.T.resize(static_cast<Eigen::Index>(state.size()), static_cast<Eigen::Index>(map.node.size()));
   map.T.setFromTriplets(t.begin(), t.end());

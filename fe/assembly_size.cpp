@@ -73,11 +73,21 @@ AssemblySize assembly_size(const Model& model) {
   Adjacency adj(model.nodes.size());
   for (const BeamElement& b : model.beams) adj.couple(model, b.nodes);
   for (const ShellElement& s : model.shells) adj.couple(model, s.nodes);
+  // Counted as six DOFs per node like the rest: solids' unused rotations are
+  // dropped later, so the estimate errs on the safe side.
+  for (const SolidElement& s : model.solids) adj.couple(model, s.nodes);
   for (const PointMass& p : model.point_masses) adj.couple(model, std::vector<NodeId>{p.node});
   for (const Spring& s : model.springs) {
     adj.couple(model, s.other ? std::vector<NodeId>{s.node, *s.other} : std::vector<NodeId>{s.node});
   }
   for (const RigidCoupling& c : model.couplings) adj.star(model, c.reference, c.dependents);
+  // Whatever is attached at the reference couples all of the coupling's
+  // nodes with each other once the reference is eliminated.
+  for (const DistributingCoupling& c : model.distributing_couplings) {
+    std::vector<NodeId> all = c.nodes;
+    all.push_back(c.reference);
+    adj.couple(model, all);
+  }
   return adj.size();
 }
 

@@ -7,6 +7,7 @@
 #include "fe/discrete_elements.hpp"
 #include "fe/error.hpp"
 #include "fe/shell_types.hpp"
+#include "fe/solid_types.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -74,6 +75,26 @@ void visit_shells(const Model& model, const ElementVisitor& visit) {
   }
 }
 
+// Solids' nodes carry translations only: their matrices act on the first
+// three of each node's six DOFs.
+void visit_solids(const Model& model, const ElementVisitor& visit) {
+  std::vector<Vec3> x;
+  std::vector<long> dofs;
+  for (const SolidElement& s : model.solids) {
+    const Material& m = model.materials.at(s.material);
+    x.clear();
+    dofs.clear();
+    for (NodeId id : s.nodes) {
+      x.push_back(model.position(id));
+      const long base = 6 * static_cast<long>(model.node_index(id));
+      for (int d = 0; d < 3; ++d) dofs.push_back(base + d);
+    }
+    const ElementMatrices e = solid_type(s).matrices(x, {m.E, m.nu, m.rho, s.mass});
+    require_finite(e.K, e.M, "solid", s.id);
+    visit(dofs, e.K, e.M);
+  }
+}
+
 void visit_discrete(const Model& model, const ElementVisitor& visit) {
   const Eigen::MatrixXd zero6 = Eigen::MatrixXd::Zero(6, 6);
   for (const PointMass& p : model.point_masses) {
@@ -103,12 +124,14 @@ void check_element_matrices(const Model& model) {
 }
 
 long element_count(const Model& model) {
-  return static_cast<long>(model.beams.size() + model.shells.size() + model.point_masses.size() + model.springs.size());
+  return static_cast<long>(model.beams.size() + model.shells.size() + model.solids.size() + model.point_masses.size() +
+                           model.springs.size());
 }
 
 void for_each_element(const Model& model, const ElementVisitor& visit) {
   visit_beams(model, visit);
   visit_shells(model, visit);
+  visit_solids(model, visit);
   visit_discrete(model, visit);
 }
 

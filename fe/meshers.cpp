@@ -6,6 +6,7 @@
 #include <set>
 
 #include "fe/error.hpp"
+#include "fe/solid_types.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -130,6 +131,74 @@ PatchNodes mesh_shell_patch(Model& model, NodeMerger& merger, const PatchSpec& s
       model.shells.push_back(e);
     }
   return grid;
+}
+
+namespace {
+
+Vec3 trilinear(const std::array<Vec3, 8>& c, double u, double v, double w) {
+  const Vec3 bottom = (1 - v) * ((1 - u) * c[0] + u * c[1]) + v * ((1 - u) * c[3] + u * c[2]);
+  const Vec3 top = (1 - v) * ((1 - u) * c[4] + u * c[5]) + v * ((1 - u) * c[7] + u * c[6]);
+  return (1 - w) * bottom + w * top;
+}
+
+// The Kuhn split of a cell into 6 tetrahedra around its diagonal 1-7, in the
+// cell's hex8 corner numbers; every one is positively oriented, and the split
+// of each face matches the neighbouring cell's.
+constexpr std::array<std::array<int, 4>, 6> kKuhnTets{
+    {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}}};
+constexpr std::array<std::array<int, 2>, 12> kHexEdges{
+    {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+constexpr std::array<std::array<int, 2>, 6> kTetEdges{{{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
+
+}  // namespace
+
+long mesh_solid_block(Model& model, NodeMerger& merger, const SolidBlockSpec& spec) {
+  require_positive_divisions(spec.id, "divisions", spec.nx);
+  require_positive_divisions(spec.id, "divisions", spec.ny);
+  require_positive_divisions(spec.id, "divisions", spec.nz);
+  const SolidType* type = solid_type_named(spec.element);
+  if (!type)
+    throw ModelError({"solid_block", spec.id, "element"},
+                     "solid block '" + spec.id + "': element '" + spec.element + "' is not " + solid_type_names());
+  const bool tets = type->nodes == 10, quadratic = type->nodes != 8;
+  long count = 0;
+  for (int k = 0; k < spec.nz; ++k)
+    for (int j = 0; j < spec.ny; ++j)
+      for (int i = 0; i < spec.nx; ++i) {
+        std::array<Vec3, 8> x;
+        std::array<NodeId, 8> corner;
+        for (int a = 0; a < 8; ++a) {
+          const int di = (a == 1 || a == 2 || a == 5 || a == 6), dj = (a == 2 || a == 3 || a == 6 || a == 7),
+                    dk = a >= 4;
+          x[a] = trilinear(spec.corners, double(i + di) / spec.nx, double(j + dj) / spec.ny, double(k + dk) / spec.nz);
+          corner[a] = merger.at(x[a]);
+        }
+        // Mid-edge nodes at the straight edge's midpoint: shared edges meet
+        // the same point from both sides, and edges stay straight.
+        auto mid = [&](int a, int b) { return merger.at(0.5 * (x[a] + x[b])); };
+        auto add = [&](std::vector<NodeId> nodes) {
+          SolidElement e;
+          e.id = spec.id + ":" + std::to_string(++count);
+          e.nodes = std::move(nodes);
+          e.material = spec.material;
+          e.mass = spec.mass;
+          model.solids.push_back(std::move(e));
+        };
+        if (!tets) {
+          std::vector<NodeId> nodes(corner.begin(), corner.end());
+          if (quadratic)
+            for (const auto& e : kHexEdges) nodes.push_back(mid(e[0], e[1]));
+          add(std::move(nodes));
+          continue;
+        }
+        for (const auto& t : kKuhnTets) {
+          std::vector<NodeId> nodes;
+          for (int a : t) nodes.push_back(corner[a]);
+          for (const auto& e : kTetEdges) nodes.push_back(mid(t[e[0]], t[e[1]]));
+          add(std::move(nodes));
+        }
+      }
+  return count;
 }
 
 BoxGirderNodes mesh_box_girder(Model& model, NodeMerger& merger, const BoxGirderSpec& spec) {

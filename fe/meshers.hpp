@@ -1,6 +1,6 @@
 #pragma once
-// Parametric meshers: beam members, shell patches, box girders, and the two
-// frame kinds of a multi-filar pendulum rig.
+// Parametric meshers: beam members, shell patches, solid blocks, box girders,
+// and the two frame kinds of a multi-filar pendulum rig.
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,6 +40,19 @@ struct PatchNodes {
   NodeId at(int row, int col) const { return ids[static_cast<size_t>(row * cols + col)]; }
 };
 PatchNodes mesh_shell_patch(Model& model, NodeMerger& merger, const PatchSpec& spec);
+
+struct SolidBlockSpec {
+  std::string id;
+  // A hexahedron in hex8 node order (fe/solid_element.hpp): 1-4 counter-
+  // clockwise seen from 5's side; mapped trilinearly, so faces may be warped.
+  std::array<Vec3, 8> corners{};
+  int nx = 1, ny = 1, nz = 1;    // divisions along corner 1->2, 1->4, 1->5
+  std::string element = "hex8";  // a solid type's name; tet10 splits each cell into 6
+  std::string material;
+  MassKind mass = MassKind::Consistent;
+};
+// Returns the number of elements made.
+long mesh_solid_block(Model& model, NodeMerger& merger, const SolidBlockSpec& spec);
 
 struct BoxGirderSpec {
   std::string id;

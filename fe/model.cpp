@@ -3,9 +3,11 @@
 #include <cmath>
 #include <set>
 
+#include "fe/distributing_coupling.hpp"
 #include "fe/error.hpp"
 #include "fe/shell_element.hpp"
 #include "fe/shell_types.hpp"
+#include "fe/solid_types.hpp"
 
 namespace rigflex::fe {
 
@@ -100,6 +102,29 @@ void validate_shell(const Model& m, const ShellElement& s) {
   check_shell_geometry(x, s.id);
 }
 
+void validate_solid(const Model& m, const SolidElement& s) {
+  const std::string what = "solid '" + s.id + "'";
+  if (!solid_type_with_nodes(s.nodes.size()))
+    throw ModelError({"solid", s.id, "nodes"}, what + " must have " + solid_node_counts() + " nodes");
+  std::vector<Vec3> x;
+  std::set<NodeId> seen;
+  for (NodeId n : s.nodes) {
+    require_node(m, n, {"solid", s.id, "nodes"}, what);
+    if (!seen.insert(n).second)
+      throw ModelError({"solid", s.id, "nodes"}, what + " lists node " + std::to_string(n) + " twice");
+    x.push_back(m.position(n));
+  }
+  require_property(m.materials, s.material, {"solid", s.id, "material"}, what, "material");
+  // A mirrored node order is the usual cause; a ratio near zero is a
+  // collapsed element whose matrices would be meaningless.
+  const double ratio = solid_jacobian_ratio(x);
+  if (!(ratio > 1e-6))
+    throw ModelError({"solid", s.id, "nodes"},
+                     what + ": inverted or degenerate (smallest Jacobian determinant " + std::to_string(ratio) +
+                         " of the mean); corners 1-4 must run counter-clockwise seen from corner 5's side "
+                         "(fe/solid_element.hpp)");
+}
+
 void validate_point_mass(const Model& m, const PointMass& p) {
   const std::string what = "point mass '" + p.id + "'";
   require_node(m, p.node, {"point_mass", p.id, "node"}, what);
@@ -157,6 +182,47 @@ void validate_coupling(const Model& m, const RigidCoupling& c, std::set<NodeId>&
   if (!any) throw ModelError({"coupling", c.id, "dofs"}, what + " couples no DOF");
 }
 
+// Chains (a coupling's node driven by another coupling) would need the
+// couplings composed; they are refused, naming both.
+void validate_distributing(const Model& m, const DistributingCoupling& c, const std::set<NodeId>& rigid_dependents,
+                           std::set<NodeId>& references) {
+  const std::string what = "distributing coupling '" + c.id + "'";
+  require_node(m, c.reference, {"coupling", c.id, "reference"}, what);
+  if (c.nodes.empty()) throw ModelError({"coupling", c.id, "nodes"}, what + " has no nodes");
+  if (!c.weights.empty() && c.weights.size() != c.nodes.size())
+    throw ModelError({"coupling", c.id, "weights"}, what + ": " + std::to_string(c.weights.size()) + " weights for " +
+                                                        std::to_string(c.nodes.size()) + " nodes");
+  for (double w : c.weights)
+    if (!(std::isfinite(w) && w > 0.0))
+      throw ModelError({"coupling", c.id, "weights"}, what + ": weights must be positive");
+  if (rigid_dependents.count(c.reference))
+    throw ModelError({"coupling", c.id, "reference"},
+                     what + ": its reference node " + std::to_string(c.reference) +
+                         " is the dependent of a rigid coupling (chained couplings are not supported)");
+  if (!references.insert(c.reference).second)
+    throw ModelError({"coupling", c.id, "reference"}, what + ": node " + std::to_string(c.reference) +
+                                                          " is already the reference of a distributing coupling");
+  std::set<NodeId> seen;
+  std::vector<Vec3> x;
+  for (NodeId n : c.nodes) {
+    require_node(m, n, {"coupling", c.id, "nodes"}, what);
+    if (n == c.reference)
+      throw ModelError({"coupling", c.id, "nodes"}, what + ": the reference node is also one of its nodes");
+    if (!seen.insert(n).second)
+      throw ModelError({"coupling", c.id, "nodes"}, what + " lists node " + std::to_string(n) + " twice");
+    if (rigid_dependents.count(n))
+      throw ModelError({"coupling", c.id, "nodes"},
+                       what + ": node " + std::to_string(n) +
+                           " is the dependent of a rigid coupling (chained couplings are not supported)");
+    x.push_back(m.position(n));
+  }
+  if (!distributing_link(m.position(c.reference), x, c.weights))
+    throw ModelError({"coupling", c.id, "nodes"},
+                     what +
+                         ": its nodes lie on one line (or are fewer than three), so they do not define the "
+                         "reference's rotation; add nodes off the line");
+}
+
 }  // namespace
 
 void Model::validate() const {
@@ -165,6 +231,7 @@ void Model::validate() const {
   for (const auto& [name, sec] : shell_sections) sec.validate();
   for (const auto& b : beams) validate_beam(*this, b);
   for (const auto& s : shells) validate_shell(*this, s);
+  for (const auto& s : solids) validate_solid(*this, s);
   for (const auto& p : point_masses) validate_point_mass(*this, p);
   for (const auto& s : springs) validate_spring(*this, s);
   for (const auto& s : supports) require_node(*this, s.node, {"support", s.id, "node"}, "support '" + s.id + "'");
@@ -175,6 +242,13 @@ void Model::validate() const {
       throw ModelError({"coupling", c.id, "reference"},
                        "rigid coupling '" + c.id + "': its reference node " + std::to_string(c.reference) +
                            " is the dependent of another coupling (chained couplings are not supported)");
+  std::set<NodeId> distributing_references;
+  for (const auto& c : distributing_couplings) validate_distributing(*this, c, dependents, distributing_references);
+  for (const auto& c : couplings)
+    if (distributing_references.count(c.reference))
+      throw ModelError({"coupling", c.id, "reference"},
+                       "rigid coupling '" + c.id + "': its reference node " + std::to_string(c.reference) +
+                           " is driven by a distributing coupling (chained couplings are not supported)");
   for (const auto& [name, ids] : node_sets)
     for (NodeId id : ids) require_node(*this, id, {"node_set", name, ""}, "node set '" + name + "'");
 }

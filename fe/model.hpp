@@ -57,6 +57,15 @@ struct ShellElement {
   MassKind mass = MassKind::Consistent;
 };
 
+// A continuum element (fe/solid_types.hpp): 8, 20 or 10 nodes choose hex8,
+// hex20 or tet10; its nodes' translations only.
+struct SolidElement {
+  std::string id;
+  std::vector<NodeId> nodes;
+  std::string material;
+  MassKind mass = MassKind::Consistent;
+};
+
 struct PointMass {
   std::string id;
   NodeId node = 0;
@@ -93,6 +102,18 @@ struct RigidCoupling {
   DofMask dofs{true, true, true, true, true, true};
 };
 
+// Distributing coupling (RBE3): the reference node's six DOFs follow the
+// weighted least-squares rigid motion of the nodes' translations. Unlike
+// RigidCoupling it adds no stiffness among the nodes: a load or a mass at the
+// reference spreads over them as statics would spread it onto a rigid body,
+// and the face it is attached to deforms freely (fe/distributing_coupling.hpp).
+struct DistributingCoupling {
+  std::string id;
+  NodeId reference = 0;
+  std::vector<NodeId> nodes;
+  std::vector<double> weights;  // one per node; empty: all 1
+};
+
 class Model {
  public:
   std::vector<Node> nodes;
@@ -101,10 +122,12 @@ class Model {
   std::map<std::string, ShellSection> shell_sections;
   std::vector<BeamElement> beams;
   std::vector<ShellElement> shells;
+  std::vector<SolidElement> solids;
   std::vector<PointMass> point_masses;
   std::vector<Spring> springs;
   std::vector<Support> supports;
   std::vector<RigidCoupling> couplings;
+  std::vector<DistributingCoupling> distributing_couplings;
   std::map<std::string, std::vector<NodeId>> node_sets;
 
   // Adds a node; throws ModelError on a duplicate id.

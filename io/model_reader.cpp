@@ -10,6 +10,7 @@
 #include "fe/error.hpp"
 #include "fe/meshers.hpp"
 #include "fe/shell_types.hpp"
+#include "fe/solid_types.hpp"
 #include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 
@@ -62,17 +63,20 @@ class ModelFileReader {
 
   void read(const YAML::Node& root) {
     c_.expect_map(root, "model file",
-                  {"name", "description", "materials", "beam_sections", "shell_sections", "nodes", "node_sets",
-                   "beams", "shells", "members", "shell_patches", "box_girders", "fixed_frame", "carrying_frame",
-                   "point_masses", "springs", "supports", "couplings"});
+                  {"name",           "description",   "materials",    "beam_sections", "shell_sections",
+                   "nodes",          "node_sets",     "beams",        "shells",        "solids",
+                   "members",        "shell_patches", "solid_blocks", "box_girders",   "fixed_frame",
+                   "carrying_frame", "point_masses",  "springs",      "supports",      "couplings"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
     each_item(root, "nodes", [&](const YAML::Node& v) { node(v); });
     each_item(root, "beams", [&](const YAML::Node& v) { beam(v); });
     each_item(root, "shells", [&](const YAML::Node& v) { shell(v); });
+    each_item(root, "solids", [&](const YAML::Node& v) { solid(v); });
     each_item(root, "members", [&](const YAML::Node& v) { member(v); });
     each_item(root, "shell_patches", [&](const YAML::Node& v) { patch(v); });
+    each_item(root, "solid_blocks", [&](const YAML::Node& v) { solid_block(v); });
     each_item(root, "box_girders", [&](const YAML::Node& v) { box_girder(v); });
     if (root["fixed_frame"].IsDefined()) fixed_frame(root["fixed_frame"]);
     if (root["carrying_frame"].IsDefined()) carrying_frame(root["carrying_frame"]);
@@ -330,6 +334,42 @@ class ModelFileReader {
     s.mass = mass_kind(n);
     m_.shells.push_back(s);
   }
+  void solid(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "nodes", "material", "mass"});
+    fe::SolidElement s;
+    s.id = id_or_index(n);
+    src_.add("solid", s.id, n);
+    const YAML::Node nodes = c_.required(n, "nodes");
+    if (!nodes.IsSequence() || !fe::solid_type_with_nodes(nodes.size()))
+      c_.fail(nodes, "nodes", "a solid has " + fe::solid_node_counts() + " nodes (" + fe::solid_type_names() + ")");
+    for (const auto& v : nodes) s.nodes.push_back(c_.as_integer(v, "nodes"));
+    s.material = c_.text(n, "material");
+    s.mass = mass_kind(n);
+    m_.solids.push_back(s);
+  }
+  void solid_block(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "corners", "divisions", "element", "material", "mass"});
+    fe::SolidBlockSpec s;
+    s.id = id_or_index(n);
+    const std::vector<Vec3> corners = points(n, "corners");
+    if (corners.size() != 8) c_.fail(n["corners"], "corners", "a solid block has 8 corners (hex8 node order)");
+    std::copy(corners.begin(), corners.end(), s.corners.begin());
+    const YAML::Node d = c_.required(n, "divisions");
+    if (!d.IsSequence() || d.size() != 3) c_.fail(d, "divisions", "expected three integers [n12, n14, n15]");
+    s.nx = c_.as_count(d[0], "divisions", kMaxDivisions);
+    s.ny = c_.as_count(d[1], "divisions", kMaxDivisions);
+    s.nz = c_.as_count(d[2], "divisions", kMaxDivisions);
+    s.element = c_.text_or(n, "element", s.element);
+    if (!fe::solid_type_named(s.element)) c_.fail(n["element"], "element", "expected " + fe::solid_type_names());
+    // Elements, with tet10's six per cell; a solid node has three DOFs.
+    bounded_mesh(d, static_cast<double>(s.nx) * s.ny * s.nz * (s.element == "tet10" ? 6 : 1));
+    s.material = c_.text(n, "material");
+    s.mass = mass_kind(n);
+    generated(n, s.id, [&] {
+      fe::NodeMerger merger(m_, kNodeTolerance);
+      fe::mesh_solid_block(m_, merger, s);
+    });
+  }
   void member(const YAML::Node& n) {
     c_.expect_map(n, index_,
                   {"id", "from", "to", "elements", "section", "orientation", "theory", "mass", "rotary_inertia"});
@@ -444,8 +484,8 @@ class ModelFileReader {
   // point at the generator's entry.
   template <class F>
   void generated(const YAML::Node& n, const std::string& id, F f) {
-    const size_t beams0 = m_.beams.size(), shells0 = m_.shells.size(), couplings0 = m_.couplings.size(),
-                 supports0 = m_.supports.size();
+    const size_t beams0 = m_.beams.size(), shells0 = m_.shells.size(), solids0 = m_.solids.size(),
+                 couplings0 = m_.couplings.size(), supports0 = m_.supports.size();
     try {
       f();
     } catch (const fe::ModelError& e) {
@@ -454,6 +494,7 @@ class ModelFileReader {
     }
     for (size_t i = beams0; i < m_.beams.size(); ++i) src_.add("beam", m_.beams[i].id, n);
     for (size_t i = shells0; i < m_.shells.size(); ++i) src_.add("shell", m_.shells[i].id, n);
+    for (size_t i = solids0; i < m_.solids.size(); ++i) src_.add("solid", m_.solids[i].id, n);
     for (size_t i = couplings0; i < m_.couplings.size(); ++i) src_.add("coupling", m_.couplings[i].id, n);
     for (size_t i = supports0; i < m_.supports.size(); ++i) src_.add("support", m_.supports[i].id, n);
   }
@@ -511,7 +552,11 @@ class ModelFileReader {
     }
   }
   void coupling(const YAML::Node& n) {
-    c_.expect_map(n, index_, {"id", "reference", "reference_at", "nodes", "set", "box", "dofs"});
+    c_.expect_map(n, index_, {"id", "kind", "reference", "reference_at", "nodes", "set", "box", "dofs", "weights"});
+    const std::string kind = c_.text_or(n, "kind", "rigid");
+    if (kind != "rigid" && kind != "distributing") c_.fail(n["kind"], "kind", "expected rigid or distributing");
+    if (kind == "distributing") return distributing_coupling(n);
+    if (n["weights"].IsDefined()) c_.fail(n["weights"], "weights", "weights belong to a distributing coupling");
     fe::RigidCoupling r;
     r.id = id_or_index(n);
     src_.add("coupling", r.id, n);
@@ -519,6 +564,20 @@ class ModelFileReader {
     r.dependents = node_list(n);
     r.dofs = dofs(n, "dofs", r.dofs);
     m_.couplings.push_back(r);
+  }
+  void distributing_coupling(const YAML::Node& n) {
+    if (n["dofs"].IsDefined())
+      c_.fail(n["dofs"], "dofs", "a distributing coupling drives all six DOFs of its reference; no dofs to choose");
+    fe::DistributingCoupling d;
+    d.id = id_or_index(n);
+    src_.add("coupling", d.id, n);
+    d.reference = node_ref(n, "reference", "reference_at");
+    d.nodes = node_list(n);
+    if (n["weights"].IsDefined()) {
+      c_.expect_sequence(n["weights"], "weights");
+      for (const auto& v : n["weights"]) d.weights.push_back(c_.as_number(v, "weights"));
+    }
+    m_.distributing_couplings.push_back(d);
   }
 
   const YamlContext& c_;

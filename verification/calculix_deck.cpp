@@ -1,6 +1,4 @@
 // The CalculiX input deck of a rigflex model.
-#include "verification/calculix.hpp"
-
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -16,6 +14,8 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/shell_types.hpp"
+#include "fe/solid_types.hpp"
+#include "verification/calculix.hpp"
 
 namespace rigflex::verification {
 namespace fs = std::filesystem;
@@ -61,11 +61,12 @@ class InputWriter {
     out_.reserve(m_.nodes.size() * 80 + m_.shells.size() * 60 + 4096);
     out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (verification/calculix_deck.cpp).\n";
     out_ += "** Beams are B32R, MITC4 shells S4, 8-node shells S8R; ccx expands them into\n";
-    out_ += "** C3D20R / C3D8I solids internally.\n";
+    out_ += "** C3D20R / C3D8I solids internally. Solids are C3D8I, C3D20 and C3D10.\n";
     if (!opt_.heading.empty()) out_ += "*HEADING\n" + opt_.heading + "\n";
     write_nodes();
     write_beams();
     write_shells();
+    write_solids();
     write_anchors();
     write_materials();
     write_point_masses();
@@ -145,6 +146,9 @@ class InputWriter {
       for (int d = 3; d < 6; ++d)
         if (s.stiffness[static_cast<size_t>(d)] != 0.0)
           unsupported("spring '" + s.id + "' has a rotational stiffness; only translational springs are exported");
+    if (!m_.distributing_couplings.empty())
+      unsupported("distributing coupling '" + m_.distributing_couplings.front().id +
+                  "': distributing couplings are not exported to ccx");
     for (const auto& c : m_.couplings)
       for (bool b : c.dofs)
         if (!b)
@@ -362,6 +366,43 @@ class InputWriter {
       const fe::ShellSection& s = m_.shell_sections.at(g.section);
       out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless ? Variant::massless : Variant::plain) + "\n" +
               num(s.thickness) + "\n";
+    }
+  }
+
+  // ---- solids ------------------------------------------------------------
+  void write_solids() {
+    // One element set per (material, mass kind, type), keyed by the type's
+    // place in fe::solid_types() so that the deck's order is fixed.
+    std::map<std::tuple<std::string, bool, size_t>, std::vector<size_t>> groups;
+    for (size_t i = 0; i < m_.solids.size(); ++i) {
+      const fe::SolidElement& s = m_.solids[i];
+      const size_t type = static_cast<size_t>(&fe::solid_type(s) - fe::solid_types().data());
+      groups[{s.material, s.mass == fe::MassKind::None, type}].push_back(i);
+    }
+    int k = 0;
+    for (const auto& [key, members] : groups) {
+      const auto& [material, massless, type] = key;
+      const std::string elset = "EV" + std::to_string(++k);
+      out_ += "** solids of material '" + material +
+              "'\n*ELEMENT, TYPE=" + std::string(fe::solid_types()[type].calculix) + ", ELSET=" + elset + "\n";
+      for (size_t i : members) {
+        // rigflex's node orders are ccx's (fe/solid_element.hpp); ccx wants
+        // at most 16 entries on a line, so the hex20's last four continue.
+        std::string line = std::to_string(++element_);
+        int entries = 1;
+        for (fe::NodeId n : m_.solids[i].nodes) {
+          if (entries == 16) {
+            out_ += line + ",\n";
+            line.clear();
+            entries = 0;
+          }
+          line += (line.empty() ? "" : ", ") + std::to_string(id(n));
+          ++entries;
+        }
+        out_ += line + "\n";
+      }
+      out_ += "*SOLID SECTION, ELSET=" + elset +
+              ", MATERIAL=" + material_name(material, massless ? Variant::massless : Variant::plain) + "\n";
     }
   }
 

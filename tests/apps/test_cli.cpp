@@ -114,6 +114,28 @@ TEST(Cli, MassPrintsTheSpecRecord) {
   EXPECT_EQ(j["inertia"].size(), 6u);
 }
 
+// The solids example: beam, solid block, rigid and distributing couplings.
+TEST(Cli, BearingBlockExampleHasItsMassAndSolidModes) {
+  const CliRun mass = run("mass --json " + example("bearing-block"));
+  ASSERT_EQ(mass.code, 0) << mass.out;
+  // Box beam 3 m x (0.2 x 0.3 - 0.18 x 0.28) m^2 of steel, a 0.3 x 0.3 x 0.4 m
+  // cast-iron block, the 250 kg rotor (through the distributing coupling).
+  const double expected = 3.0 * (0.2 * 0.3 - 0.18 * 0.28) * 7850 + 0.3 * 0.3 * 0.4 * 7200 + 250.0;
+  EXPECT_NEAR(nlohmann::json::parse(mass.out)["mass"].get<double>(), expected, 1e-9 * expected);
+
+  const fs::path out = fresh_dir("bearing");
+  const CliRun r = run("modes " + example("bearing-block") + " --count 4 --quiet --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  const nlohmann::json j = nlohmann::json::parse(std::ifstream(out / "modes.json"));
+  ASSERT_EQ(j["frequencies_hz"].size(), 4u);
+  EXPECT_GT(j["frequencies_hz"][0].get<double>(), 1.0);  // supported: no rigid-body mode
+  // The mode files carry every element: 12 beams, 36 hex20, 1 point mass.
+  std::stringstream vtu;
+  vtu << std::ifstream(out / "mode_001.vtu").rdbuf();
+  EXPECT_NE(vtu.str().find("NumberOfCells=\"49\""), std::string::npos);
+  fs::remove_all(out);
+}
+
 TEST(Cli, BadInputNamesFileLineAndKeyAndWritesNothing) {
   const fs::path model = write_model("bad", "materials:\n  steel: {E: 2.1e11, nu: 0.3, rho: 7850, colour: 1}\n");
   const fs::path out = fresh_dir("bad");

@@ -1,6 +1,8 @@
 // The model reader: valid input builds the model; bad input names file, line and key.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "io/input_error.hpp"
 #include "io/model_formats.hpp"
 #include "io/model_reader.hpp"
@@ -164,6 +166,99 @@ shells:
 )";
   const auto e = model_error_of(text);
   EXPECT_EQ(e.line(), 11);
+}
+
+const char* kSolidModel = R"(materials:
+  steel: {E: 2.1e11, nu: 0.3, rho: 7850}
+nodes:
+  - [101, 0, 0, 2]
+  - [102, 1, 0, 2]
+  - [103, 1, 1, 2]
+  - [104, 0, 1, 2]
+  - [105, 0, 0, 3]
+  - [106, 1, 0, 3]
+  - [107, 1, 1, 3]
+  - [108, 0, 1, 3]
+solids:
+  - {id: cap, nodes: [101, 102, 103, 104, 105, 106, 107, 108], material: steel}
+solid_blocks:
+  - {id: base, corners: [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0], [0, 0, 2], [1, 0, 2], [1, 1, 2], [0, 1, 2]],
+     divisions: [2, 2, 4], element: hex20, material: steel, mass: lumped}
+)";
+
+TEST(ModelReader, ReadsSolidsAndSolidBlocks) {
+  const io::ModelFile f = io::parse_model(kSolidModel, "solid.yaml");
+  ASSERT_EQ(f.model.solids.size(), 1u + 2 * 2 * 4);
+  EXPECT_EQ(f.model.solids[0].id, "cap");
+  EXPECT_EQ(f.model.solids[1].nodes.size(), 20u);
+  EXPECT_EQ(f.model.solids[1].mass, fe::MassKind::Lumped);
+  // The block's top corners merge with the cap's lower nodes 101-104: the
+  // hex20 grid of 2 x 2 x 4 cells has 5 x 5 x 9 = 225 points, 84 of them with
+  // two or three odd indices (face and cell centres, no node), so 141 nodes,
+  // plus the cap's four upper ones.
+  EXPECT_EQ(f.model.nodes.size(), 141u + 4u);
+  auto in_block = [&](fe::NodeId id) {
+    return std::any_of(f.model.solids.begin() + 1, f.model.solids.end(), [&](const fe::SolidElement& s) {
+      return std::find(s.nodes.begin(), s.nodes.end(), id) != s.nodes.end();
+    });
+  };
+  for (fe::NodeId id : {101, 102, 103, 104}) EXPECT_TRUE(in_block(id)) << id;
+  for (fe::NodeId id : {105, 106, 107, 108}) EXPECT_FALSE(in_block(id)) << id;
+}
+
+TEST(ModelReader, SolidErrorsNameLineAndKey) {
+  {
+    const auto e = model_error_of(replace_first(kSolidModel, "element: hex20", "element: hex27"));
+    EXPECT_EQ(e.line(), 16);
+    EXPECT_EQ(e.key(), "element");
+    EXPECT_NE(std::string(e.what()).find("hex8, hex20 or tet10"), std::string::npos) << e.what();
+  }
+  {
+    const auto e = model_error_of(replace_first(kSolidModel, "107, 108]", "107]"));
+    EXPECT_EQ(e.line(), 13);
+    EXPECT_EQ(e.key(), "nodes");
+  }
+  {  // corners 1-4 clockwise seen from 5's side: an inverted element
+    const auto e = model_error_of(replace_first(kSolidModel, "[101, 102, 103, 104,", "[101, 104, 103, 102,"));
+    EXPECT_EQ(e.line(), 13);
+    EXPECT_NE(std::string(e.what()).find("inverted"), std::string::npos) << e.what();
+  }
+  {
+    const auto e =
+        model_error_of(replace_first(kSolidModel, "material: steel}\nsolid_blocks", "material: iron}\nsolid_blocks"));
+    EXPECT_EQ(e.line(), 13);
+    EXPECT_EQ(e.key(), "material");
+  }
+}
+
+TEST(ModelReader, DistributingCouplingIsReadAndItsErrorsNamed) {
+  const std::string text = std::string(kSolidModel) + R"(couplings:
+  - {id: hub, kind: distributing, reference: 900, nodes: [105, 106, 107, 108], weights: [1, 2, 1, 2]}
+)";
+  const std::string with_node = replace_first(text, "nodes:\n", "nodes:\n  - [900, 0.5, 0.5, 3.5]\n");
+  const io::ModelFile f = io::parse_model(with_node, "solid.yaml");
+  ASSERT_EQ(f.model.distributing_couplings.size(), 1u);
+  EXPECT_EQ(f.model.distributing_couplings[0].weights, (std::vector<double>{1, 2, 1, 2}));
+  EXPECT_TRUE(f.model.couplings.empty());
+  {
+    const auto e = model_error_of(replace_first(with_node, "weights: [1, 2, 1, 2]", "dofs: [UX]"));
+    EXPECT_EQ(e.key(), "dofs");
+  }
+  {
+    const auto e = model_error_of(replace_first(with_node, "weights: [1, 2, 1, 2]", "weights: [1, 2]"));
+    EXPECT_EQ(e.line(), 19);
+    EXPECT_EQ(e.key(), "weights");
+  }
+  {
+    const auto e =
+        model_error_of(replace_first(with_node, "[105, 106, 107, 108], weights: [1, 2, 1, 2]", "[105, 106]"));
+    EXPECT_EQ(e.line(), 19);
+    EXPECT_NE(std::string(e.what()).find("one line"), std::string::npos) << e.what();
+  }
+  {
+    const auto e = model_error_of(replace_first(with_node, "kind: distributing", "kind: glued"));
+    EXPECT_EQ(e.key(), "kind");
+  }
 }
 
 TEST(ModelReader, NonPositiveThickness) {

@@ -1,6 +1,7 @@
 // Mode-shape files (io/vtk_modes.hpp) read back with VTK's own reader: each
-// shell type's cell arrives with the type's node count, so ParaView draws
-// the element the model has.
+// shell and solid type's cell arrives with the type's node count, and each
+// edge of a quadratic solid cell has its middle point halfway between its
+// ends, so ParaView draws the element the model has.
 #include <gtest/gtest.h>
 #include <vtkCell.h>
 #include <vtkNew.h>
@@ -9,11 +10,28 @@
 
 #include <filesystem>
 
+#include "fe/meshers.hpp"
 #include "fe/shell_types.hpp"
+#include "fe/solid_types.hpp"
 #include "io/vtk_modes.hpp"
 
 namespace rigflex::io {
 namespace {
+
+// Writes a mode-shape file of m and reads it back with VTK's reader.
+vtkSmartPointer<vtkUnstructuredGrid> written_grid(const fe::Model& m, const std::string& name) {
+  const fe::AssembledSystem sys = fe::assemble(m);
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / name;
+  std::filesystem::remove_all(dir);
+  FileBatch batch;
+  add_mode_shape_files(batch, dir, m, sys.dofs, Eigen::VectorXd::Ones(1),
+                       Eigen::MatrixXd::Zero(sys.dofs.free_count(), 1));
+  batch.commit();
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName((dir / "mode_001.vtu").string().c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
 
 TEST(VtkModes, EachShellTypesCellHasTheTypesNodes) {
   fe::Model m;
@@ -35,24 +53,47 @@ TEST(VtkModes, EachShellTypesCellHasTheTypesNodes) {
     m.shells.push_back(s);
     x0 += 2.0;
   }
-  const fe::AssembledSystem sys = fe::assemble(m);
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "vtk_shell_types";
-  std::filesystem::remove_all(dir);
-  FileBatch batch;
-  add_mode_shape_files(batch, dir, m, sys.dofs, Eigen::VectorXd::Ones(1),
-                       Eigen::MatrixXd::Zero(sys.dofs.free_count(), 1));
-  batch.commit();
-
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  reader->SetFileName((dir / "mode_001.vtu").string().c_str());
-  reader->Update();
-  vtkUnstructuredGrid* grid = reader->GetOutput();
+  vtkSmartPointer<vtkUnstructuredGrid> grid = written_grid(m, "vtk_shell_types");
   ASSERT_EQ(grid->GetNumberOfCells(), static_cast<vtkIdType>(fe::shell_types().size()));
   for (size_t i = 0; i < fe::shell_types().size(); ++i) {
     const fe::ShellType& t = fe::shell_types()[i];
     SCOPED_TRACE(t.name);
     EXPECT_EQ(grid->GetCellType(static_cast<vtkIdType>(i)), t.vtk_cell);
     EXPECT_EQ(grid->GetCell(static_cast<vtkIdType>(i))->GetNumberOfPoints(), t.nodes);
+  }
+}
+
+TEST(VtkModes, EachSolidTypesCellHasTheTypesNodesInVtkOrder) {
+  for (const fe::SolidType& t : fe::solid_types()) {
+    SCOPED_TRACE(t.name);
+    fe::Model m;
+    m.materials["steel"] = fe::Material{"steel", 210e9, 0.3, 7850.0};
+    fe::NodeMerger merger(m);
+    fe::SolidBlockSpec spec;
+    spec.id = "b";
+    spec.corners = {fe::Vec3(0, 0, 0),     fe::Vec3(2, 0.1, 0),   fe::Vec3(2.2, 1.3, 0.1), fe::Vec3(-0.1, 1, 0),
+                    fe::Vec3(0.1, 0, 0.9), fe::Vec3(2.1, 0, 1.2), fe::Vec3(2, 1.1, 1),     fe::Vec3(0, 1.2, 1.1)};
+    spec.element = t.name;
+    spec.material = "steel";
+    fe::mesh_solid_block(m, merger, spec);
+    vtkSmartPointer<vtkUnstructuredGrid> grid = written_grid(m, std::string("vtk_solid_") + t.name);
+    ASSERT_EQ(grid->GetNumberOfCells(), static_cast<vtkIdType>(m.solids.size()));
+    for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c) {
+      EXPECT_EQ(grid->GetCellType(c), t.vtk_cell);
+      vtkCell* cell = grid->GetCell(c);
+      ASSERT_EQ(cell->GetNumberOfPoints(), t.nodes);
+      if (t.nodes == 8) continue;
+      // VTK's own edge table of the cell: ends, then the middle point.
+      for (int e = 0; e < cell->GetNumberOfEdges(); ++e) {
+        vtkCell* edge = cell->GetEdge(e);
+        ASSERT_EQ(edge->GetNumberOfPoints(), 3);
+        double a[3], b[3], mid[3];
+        edge->GetPoints()->GetPoint(0, a);
+        edge->GetPoints()->GetPoint(1, b);
+        edge->GetPoints()->GetPoint(2, mid);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(mid[k], 0.5 * (a[k] + b[k]), 1e-12) << "edge " << e;
+      }
+    }
   }
 }
 

@@ -172,6 +172,11 @@ TEST(CalculixInput, RefusesWhatCcxCannotExpress) {
   m = small_mixed_model();
   m.springs.front().stiffness[4] = 1e3;
   EXPECT_THROW(verification::calculix_input(m, {}), std::invalid_argument);
+  // The bearing-block example's rotor hangs on a distributing coupling.
+  const io::ModelFile bearing = io::read_model(fs::path(RIGFLEX_SOURCE_DIR) / "examples/bearing-block/model.yaml");
+  fe::Model no_inertia = bearing.model;
+  no_inertia.point_masses.front().inertia = {};
+  expect_refused(no_inertia, "'bearing'", "distributing coupling");
 }
 
 TEST(CalculixInput, ParsesTheEigenvalueTable) {
