@@ -119,10 +119,12 @@ void validate_solid(const Model& m, const SolidElement& s) {
   // collapsed element whose matrices would be meaningless.
   const double ratio = solid_jacobian_ratio(x);
   if (!(ratio > 1e-6))
-    throw ModelError({"solid", s.id, "nodes"},
-                     what + ": inverted or degenerate (smallest Jacobian determinant " + std::to_string(ratio) +
-                         " of the mean); corners 1-4 must run counter-clockwise seen from corner 5's side "
-                         "(fe/solid_element.hpp)");
+    throw ModelError(
+        {"solid", s.id, "nodes"},
+        what + ": inverted or degenerate (smallest Jacobian determinant " + std::to_string(ratio) + " of the mean); " +
+            (s.nodes.size() == 10 ? "corner 4 must lie on the side of corners 1-2-3 where (x2 - x1) x (x3 - x1) points"
+                                  : "corners 1-4 must run counter-clockwise seen from corner 5's side") +
+            " (fe/solid_element.hpp)");
 }
 
 void validate_point_mass(const Model& m, const PointMass& p) {
@@ -185,7 +187,7 @@ void validate_coupling(const Model& m, const RigidCoupling& c, std::set<NodeId>&
 // Chains (a coupling's node driven by another coupling) would need the
 // couplings composed; they are refused, naming both.
 void validate_distributing(const Model& m, const DistributingCoupling& c, const std::set<NodeId>& rigid_dependents,
-                           std::set<NodeId>& references) {
+                           const std::set<NodeId>& all_references, std::set<NodeId>& references) {
   const std::string what = "distributing coupling '" + c.id + "'";
   require_node(m, c.reference, {"coupling", c.id, "reference"}, what);
   if (c.nodes.empty()) throw ModelError({"coupling", c.id, "nodes"}, what + " has no nodes");
@@ -214,6 +216,10 @@ void validate_distributing(const Model& m, const DistributingCoupling& c, const 
       throw ModelError({"coupling", c.id, "nodes"},
                        what + ": node " + std::to_string(n) +
                            " is the dependent of a rigid coupling (chained couplings are not supported)");
+    if (all_references.count(n))
+      throw ModelError({"coupling", c.id, "nodes"},
+                       what + ": node " + std::to_string(n) +
+                           " is the reference of a distributing coupling (chained couplings are not supported)");
     x.push_back(m.position(n));
   }
   if (!distributing_link(m.position(c.reference), x, c.weights))
@@ -242,8 +248,10 @@ void Model::validate() const {
       throw ModelError({"coupling", c.id, "reference"},
                        "rigid coupling '" + c.id + "': its reference node " + std::to_string(c.reference) +
                            " is the dependent of another coupling (chained couplings are not supported)");
-  std::set<NodeId> distributing_references;
-  for (const auto& c : distributing_couplings) validate_distributing(*this, c, dependents, distributing_references);
+  std::set<NodeId> all_references, distributing_references;
+  for (const auto& c : distributing_couplings) all_references.insert(c.reference);
+  for (const auto& c : distributing_couplings)
+    validate_distributing(*this, c, dependents, all_references, distributing_references);
   for (const auto& c : couplings)
     if (distributing_references.count(c.reference))
       throw ModelError({"coupling", c.id, "reference"},

@@ -97,8 +97,9 @@ std::vector<Eigen::Index> interface_columns(const fe::Model& model, const fe::Do
       if (col < 0) {
         throw fe::ModelError({"node_set", set, ""},
                              "interface DOF node " + std::to_string(n.id) + " " + std::string(fe::dof_name(d)) +
-                                 " is not a free DOF: it is held by a support, dependent in a rigid coupling, or "
-                                 "carries neither stiffness nor mass");
+                                 " is not a free DOF: it is held by a support, driven by a coupling (a rigid "
+                                 "coupling's dependent or a distributing coupling's reference), or carries neither "
+                                 "stiffness nor mass");
       }
       cols.push_back(col);
       order.push_back({n.id, d});

@@ -371,8 +371,9 @@ class InputWriter {
 
   // ---- solids ------------------------------------------------------------
   void write_solids() {
-    // One element set per (material, mass kind, type), keyed by the type's
-    // place in fe::solid_types() so that the deck's order is fixed.
+    // One element set per (material, massless or not, type), keyed by the
+    // type's place in fe::solid_types() so that the deck's order is fixed.
+    // Lumped solids are written with ccx's consistent mass, as shells are.
     std::map<std::tuple<std::string, bool, size_t>, std::vector<size_t>> groups;
     for (size_t i = 0; i < m_.solids.size(); ++i) {
       const fe::SolidElement& s = m_.solids[i];

@@ -16,6 +16,7 @@
 #include "fe/assembly.hpp"
 #include "fe/distributing_coupling.hpp"
 #include "fe/error.hpp"
+#include "fe/mass_properties.hpp"
 #include "fe/meshers.hpp"
 #include "linalg/eigen_solver.hpp"
 
@@ -47,8 +48,12 @@ TEST(DistributingCoupling, ReproducesRigidMotionsExactly) {
 TEST(DistributingCoupling, AveragesTranslationsByWeight) {
   const std::vector<Vec3> x{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)};
   const std::vector<double> w{1, 2, 3, 4};
-  const auto G = distributing_link(Vec3(0.5, 0.5, 0), x, w);  // reference off the weighted centroid
+  const auto G = distributing_link(Vec3(0.5, 0.5, 0.2), x, w);  // reference off the weighted centroid
   ASSERT_TRUE(G);
+  Eigen::VectorXd same(12);
+  for (int i = 0; i < 4; ++i) same.segment<3>(3 * i) = Vec3(0.1, -0.2, 0.3);
+  EXPECT_LT(((*G * same).head<3>() - Vec3(0.1, -0.2, 0.3)).norm(), 1e-15);
+  EXPECT_LT((*G * same).tail<3>().norm(), 1e-15);
   // Every node moved by the same vector: the reference follows it; one node
   // moved alone: the reference's translation at the weighted centroid is
   // w_i / W of it (checked through the centroid's own link).
@@ -73,6 +78,66 @@ TEST(DistributingCoupling, CollinearOrTooFewNodesAreRefused) {
   } catch (const ModelError& e) {
     EXPECT_EQ(e.where().id, "line");
     EXPECT_NE(std::string(e.what()).find("one line"), std::string::npos) << e.what();
+  }
+}
+
+// What validate() refuses, each naming the coupling and the offending key.
+TEST(DistributingCoupling, ChainsAndBadWeightsAreRefused) {
+  auto base = [] {
+    Model m;
+    // A square of nodes 1-4, references 5 and 6 above it, a node 7 beside.
+    const Vec3 p[] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 1}, {0.5, 0.5, 2}, {2, 0, 0}};
+    for (int i = 0; i < 7; ++i) m.add_node(i + 1, p[i]);
+    return m;
+  };
+  auto refused = [](const Model& m, const std::string& id, const std::string& key, const std::string& words) {
+    try {
+      m.validate();
+      ADD_FAILURE() << words << ": accepted";
+    } catch (const ModelError& e) {
+      EXPECT_EQ(e.where().id, id) << e.what();
+      EXPECT_EQ(e.where().key, key) << e.what();
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+    }
+  };
+  {  // a node of one is the reference of another: its motion would be read as zero
+    Model m = base();
+    m.distributing_couplings.push_back({"upper", 6, {1, 2, 5}, {}});
+    m.distributing_couplings.push_back({"lower", 5, {1, 2, 3, 4}, {}});
+    refused(m, "upper", "nodes", "reference of a distributing coupling");
+  }
+  {  // a node that a rigid coupling drives
+    Model m = base();
+    m.couplings.push_back({"tie", 7, {4}, {true, true, true, true, true, true}});
+    m.distributing_couplings.push_back({"hub", 5, {1, 2, 3, 4}, {}});
+    refused(m, "hub", "nodes", "dependent of a rigid coupling");
+  }
+  {  // a rigid coupling hung on a distributing reference
+    Model m = base();
+    m.distributing_couplings.push_back({"hub", 5, {1, 2, 3, 4}, {}});
+    m.couplings.push_back({"tie", 5, {6}, {true, true, true, true, true, true}});
+    refused(m, "tie", "reference", "driven by a distributing coupling");
+  }
+  {  // one reference, two couplings
+    Model m = base();
+    m.distributing_couplings.push_back({"a", 5, {1, 2, 3}, {}});
+    m.distributing_couplings.push_back({"b", 5, {2, 3, 4}, {}});
+    refused(m, "b", "reference", "already the reference");
+  }
+  {
+    Model m = base();
+    m.distributing_couplings.push_back({"hub", 5, {1, 2, 3, 4}, {1, 1, 0, 1}});
+    refused(m, "hub", "weights", "positive");
+  }
+  {
+    Model m = base();
+    m.distributing_couplings.push_back({"hub", 5, {1, 2, 3, 4}, {1, 1}});
+    refused(m, "hub", "weights", "2 weights for 4 nodes");
+  }
+  {
+    Model m = base();
+    m.distributing_couplings.push_back({"hub", 5, {1, 2, 3, 3}, {}});
+    refused(m, "hub", "nodes", "twice");
   }
 }
 
@@ -115,15 +180,31 @@ TEST(DistributingCoupling, FreeBodyGainsTheReferenceMassAndKeepsItsRigidModes) {
   const linalg::EigenResult r = linalg::solve_dense(K, M, 8, -1.0);
   ASSERT_GE(r.eigenvalues.size(), 7);
   EXPECT_LT(std::abs(r.eigenvalues(5)), 1e-6 * r.eigenvalues(6));
-  // Mass matrix of rigid translations: the bar's mass plus the reference's.
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(sys.dofs.free_count(), 3);
-  for (Eigen::Index j = 0; j < sys.dofs.free_count(); ++j)
-    if (sys.dofs.local[static_cast<size_t>(j)] < 3) R(j, sys.dofs.local[static_cast<size_t>(j)]) = 1.0;
-  const Eigen::Matrix3d rigid = R.transpose() * M * R;
+  // The 6 x 6 rigid-body mass about the origin (u = a + theta x x):
+  // [m I, -m [c]x; m [c]x, J_origin], in closed form for the bar (a box
+  // along x from 0 to L) plus the point mass at its offset with its own
+  // inertia, against R' M R of the assembled system.
+  const Eigen::MatrixXd R = rigid_body_modes_free(m, sys.dofs, Vec3::Zero());
+  const Eigen::MatrixXd rigid = R.transpose() * M * R;
+  auto skew = [](const Vec3& v) {
+    Eigen::Matrix3d s;
+    s << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+    return s;
+  };
+  auto body = [&](double mb, const Vec3& c, const Eigen::Matrix3d& J_origin) {
+    Eigen::Matrix<double, 6, 6> B;
+    B << mb * Eigen::Matrix3d::Identity(), -mb * skew(c), mb * skew(c), J_origin;
+    return B;
+  };
   const double bar_mass = kSteel.rho * L * b * b;
-  EXPECT_NEAR(rigid(0, 0) / (bar_mass + mass), 1.0, 1e-12);
-  EXPECT_NEAR(rigid(2, 2) / (bar_mass + mass), 1.0, 1e-12);
-  EXPECT_NEAR(rigid(0, 1), 0.0, 1e-9 * mass);
+  const Eigen::Matrix3d J_bar =
+      bar_mass * Eigen::Vector3d(b * b / 6, L * L / 3 + b * b / 12, L * L / 3 + b * b / 12).asDiagonal();
+  const Vec3 p = m.position(ref);
+  Eigen::Matrix3d J_point;
+  J_point << 2.0, 0.1, 0.0, 0.1, 3.0, 0.0, 0.0, 0.0, 4.0;
+  J_point += mass * (p.squaredNorm() * Eigen::Matrix3d::Identity() - p * p.transpose());
+  const Eigen::Matrix<double, 6, 6> expected = body(bar_mass, Vec3(L / 2, 0, 0), J_bar) + body(mass, p, J_point);
+  EXPECT_LT((rigid - expected).norm(), 1e-11 * expected.norm()) << rigid << "\n\n" << expected;
 }
 
 TEST(DistributingCoupling, HeavyEndMassVibratesAsTheSpringMassClosedForms) {

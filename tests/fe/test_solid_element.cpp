@@ -10,8 +10,8 @@
 //  * pure bending: Saint-Venant's exact solution (quadratic in x, y, z)
 //    prescribed at the nodes of a beam one element deep stores exactly
 //    E I kappa^2 L / 2 (hex20 and tet10 contain every quadratic; hex8 through
-//    its bubbles: no shear locking, where a plain trilinear brick stores
-//    several times more);
+//    its bubbles: no shear locking - without them, tried once, it stored
+//    3.6 times more);
 //  * mass: consistent mass gives the body's mass and its moments of inertia
 //    exactly; lumped (HRZ) is diagonal, positive and keeps the mass.
 #include <gtest/gtest.h>
