@@ -5,6 +5,7 @@
 #include "fe/distributing_coupling.hpp"
 #include "fe/element_loop.hpp"
 #include "fe/error.hpp"
+#include "fe/skew.hpp"
 
 namespace rigflex::fe {
 namespace {
@@ -82,9 +83,7 @@ std::vector<DofState> classify_dofs(const Model& model) {
 // u_d = u_r + theta_r x r, theta_d = theta_r.
 Eigen::Matrix<double, 6, 6> rigid_link(const Vec3& r) {
   Eigen::Matrix<double, 6, 6> G = Eigen::Matrix<double, 6, 6>::Identity();
-  Eigen::Matrix3d skew;
-  skew << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  G.topRightCorner<3, 3>() = -skew;
+  G.topRightCorner<3, 3>() = -skew(r);
   return G;
 }
 

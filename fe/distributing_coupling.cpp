@@ -2,16 +2,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "fe/skew.hpp"
+
 namespace rigflex::fe {
-namespace {
-
-Eigen::Matrix3d skew(const Vec3& r) {
-  Eigen::Matrix3d s;
-  s << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
-  return s;
-}
-
-}  // namespace
 
 std::optional<Eigen::MatrixXd> distributing_link(const Vec3& reference, const std::vector<Vec3>& nodes,
                                                  const std::vector<double>& weights) {

@@ -146,9 +146,6 @@ Vec3 trilinear(const std::array<Vec3, 8>& c, double u, double v, double w) {
 // of each face matches the neighbouring cell's.
 constexpr std::array<std::array<int, 4>, 6> kKuhnTets{
     {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6}, {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}}};
-constexpr std::array<std::array<int, 2>, 12> kHexEdges{
-    {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
-constexpr std::array<std::array<int, 2>, 6> kTetEdges{{{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
 
 }  // namespace
 
@@ -187,14 +184,14 @@ long mesh_solid_block(Model& model, NodeMerger& merger, const SolidBlockSpec& sp
         if (!tets) {
           std::vector<NodeId> nodes(corner.begin(), corner.end());
           if (quadratic)
-            for (const auto& e : kHexEdges) nodes.push_back(mid(e[0], e[1]));
+            for (const auto& e : kHexMidEdges) nodes.push_back(mid(e[0], e[1]));
           add(std::move(nodes));
           continue;
         }
         for (const auto& t : kKuhnTets) {
           std::vector<NodeId> nodes;
           for (int a : t) nodes.push_back(corner[a]);
-          for (const auto& e : kTetEdges) nodes.push_back(mid(t[e[0]], t[e[1]]));
+          for (const auto& e : kTetMidEdges) nodes.push_back(mid(t[e[0]], t[e[1]]));
           add(std::move(nodes));
         }
       }

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "fe/gauss_legendre.hpp"
+
 namespace rigflex::fe::shell_detail {
 
 double LocalFrame::length() const { return std::sqrt(area); }
@@ -44,26 +46,10 @@ LocalFrame make_local_frame(const std::vector<Vec3>& x) {
 }
 
 std::vector<GaussPoint> gauss_rule(int n) {
-  std::vector<double> pts, wts;
-  switch (n) {
-    case 1:
-      pts = {0.0};
-      wts = {2.0};
-      break;
-    case 2:
-      pts = {-1.0 / std::sqrt(3.0), 1.0 / std::sqrt(3.0)};
-      wts = {1.0, 1.0};
-      break;
-    case 3:
-      pts = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
-      wts = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-      break;
-    default:
-      throw std::invalid_argument("gauss_rule: n must be 1, 2 or 3");
-  }
+  const GaussLegendre g = gauss_legendre(n);
   std::vector<GaussPoint> rule;
-  for (size_t j = 0; j < pts.size(); ++j)
-    for (size_t i = 0; i < pts.size(); ++i) rule.push_back({pts[i], pts[j], wts[i] * wts[j]});
+  for (size_t j = 0; j < g.x.size(); ++j)
+    for (size_t i = 0; i < g.x.size(); ++i) rule.push_back({g.x[i], g.x[j], g.w[i] * g.w[j]});
   return rule;
 }
 

@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "fe/gauss_legendre.hpp"
+
 namespace rigflex::fe {
 namespace {
 
@@ -23,37 +25,16 @@ struct Point {
   double w;
 };
 
-struct Shape {
+// Not `Shape`: the shells' helpers (fe/shell_common.hpp) have one, and a
+// unity-build source may hold both.
+struct SolidShape {
   VectorXd N;
   NaturalDerivatives dN;  // dN(a, k) = dN_a / dr_k
 };
 
-void gauss_1d(int n, std::vector<double>& x, std::vector<double>& w) {
-  switch (n) {
-    case 2:
-      x = {-1 / std::sqrt(3.0), 1 / std::sqrt(3.0)};
-      w = {1, 1};
-      return;
-    case 3:
-      x = {-std::sqrt(0.6), 0, std::sqrt(0.6)};
-      w = {5 / 9.0, 8 / 9.0, 5 / 9.0};
-      return;
-    case 4: {
-      const double a = std::sqrt(3.0 / 7 - 2.0 / 7 * std::sqrt(1.2)), b = std::sqrt(3.0 / 7 + 2.0 / 7 * std::sqrt(1.2));
-      const double wa = (18 + std::sqrt(30.0)) / 36, wb = (18 - std::sqrt(30.0)) / 36;
-      x = {-b, -a, a, b};
-      w = {wb, wa, wa, wb};
-      return;
-    }
-    default:
-      throw std::invalid_argument("gauss_1d: n must be 2, 3 or 4");
-  }
-}
-
 // n x n x n Gauss points on [-1, 1]^3.
 std::vector<Point> cube_rule(int n) {
-  std::vector<double> x, w;
-  gauss_1d(n, x, w);
+  const auto [x, w] = gauss_legendre(n);
   std::vector<Point> rule;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
@@ -65,8 +46,7 @@ std::vector<Point> cube_rule(int n) {
 // r = u, s = v (1 - u), t = w (1 - u)(1 - v), dV = (1 - u)^2 (1 - v) du dv dw.
 // n points per direction integrate every polynomial of degree 2n - 3 exactly.
 std::vector<Point> tet_rule(int n) {
-  std::vector<double> x, w;
-  gauss_1d(n, x, w);
+  const auto [x, w] = gauss_legendre(n);
   std::vector<Point> rule;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
@@ -80,18 +60,15 @@ std::vector<Point> tet_rule(int n) {
 
 constexpr std::array<std::array<int, 3>, 8> kHexCorners{
     {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}};
-constexpr std::array<std::array<int, 2>, 12> kHexEdges{
-    {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
-constexpr std::array<std::array<int, 2>, 6> kTetEdges{{{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
 
 Vector3d hex_node(int a) {
   if (a < 8) return Vector3d(kHexCorners[a][0], kHexCorners[a][1], kHexCorners[a][2]);
-  const auto& e = kHexEdges[a - 8];
+  const auto& e = kHexMidEdges[a - 8];
   return 0.5 * (hex_node(e[0]) + hex_node(e[1]));
 }
 
-Shape hex8_shape(const Vector3d& r) {
-  Shape s{VectorXd(8), NaturalDerivatives(8, 3)};
+SolidShape hex8_shape(const Vector3d& r) {
+  SolidShape s{VectorXd(8), NaturalDerivatives(8, 3)};
   for (int a = 0; a < 8; ++a) {
     const Vector3d c = hex_node(a);
     const Vector3d f = (Vector3d::Ones() + c.cwiseProduct(r)) / 2;
@@ -101,8 +78,8 @@ Shape hex8_shape(const Vector3d& r) {
   return s;
 }
 
-Shape hex20_shape(const Vector3d& r) {
-  Shape s{VectorXd(20), NaturalDerivatives(20, 3)};
+SolidShape hex20_shape(const Vector3d& r) {
+  SolidShape s{VectorXd(20), NaturalDerivatives(20, 3)};
   for (int a = 0; a < 20; ++a) {
     const Vector3d c = hex_node(a);
     if (a < 8) {
@@ -125,16 +102,16 @@ Shape hex20_shape(const Vector3d& r) {
   return s;
 }
 
-Shape tet10_shape(const Vector3d& r) {
+SolidShape tet10_shape(const Vector3d& r) {
   const std::array<double, 4> L{1 - r.sum(), r(0), r(1), r(2)};
   std::array<Vector3d, 4> dL{Vector3d(-1, -1, -1), Vector3d::UnitX(), Vector3d::UnitY(), Vector3d::UnitZ()};
-  Shape s{VectorXd(10), NaturalDerivatives(10, 3)};
+  SolidShape s{VectorXd(10), NaturalDerivatives(10, 3)};
   for (int a = 0; a < 4; ++a) {
     s.N(a) = L[a] * (2 * L[a] - 1);
     s.dN.row(a) = (4 * L[a] - 1) * dL[a].transpose();
   }
   for (int e = 0; e < 6; ++e) {
-    const int i = kTetEdges[e][0], j = kTetEdges[e][1];
+    const int i = kTetMidEdges[e][0], j = kTetMidEdges[e][1];
     s.N(4 + e) = 4 * L[i] * L[j];
     s.dN.row(4 + e) = 4 * (L[j] * dL[i] + L[i] * dL[j]).transpose();
   }
@@ -170,11 +147,11 @@ MatrixXd coordinates(const std::vector<Vec3>& x) {
 }
 
 // J(i, k) = dx_i / dr_k.
-Matrix3d jacobian(const Shape& s, const MatrixXd& X) { return X.transpose() * s.dN; }
+Matrix3d jacobian(const SolidShape& s, const MatrixXd& X) { return X.transpose() * s.dN; }
 
 struct Family {
   int nodes;
-  Shape (*shape)(const Vector3d&);
+  SolidShape (*shape)(const Vector3d&);
   std::vector<Point> stiffness_rule, mass_rule;
 };
 
@@ -220,7 +197,7 @@ MatrixXd solid_mass(const Family& f, const MatrixXd& X, const SolidProperties& p
   MatrixXd m = MatrixXd::Zero(n, n);
   double volume = 0;
   for (const Point& g : f.mass_rule) {
-    const Shape s = f.shape(g.r);
+    const SolidShape s = f.shape(g.r);
     const double dv = g.w * jacobian(s, X).determinant();
     m += dv * s.N * s.N.transpose();
     volume += dv;
@@ -237,7 +214,7 @@ MatrixXd standard_stiffness(const Family& f, const MatrixXd& X, const SolidPrope
   const Matrix6d D = elasticity(p.E, p.nu);
   MatrixXd K = MatrixXd::Zero(3 * f.nodes, 3 * f.nodes);
   for (const Point& g : f.stiffness_rule) {
-    const Shape s = f.shape(g.r);
+    const SolidShape s = f.shape(g.r);
     const Matrix3d J = jacobian(s, X);
     const MatrixXd B = strain_B(s.dN * J.inverse());
     K += g.w * J.determinant() * B.transpose() * D * B;
@@ -262,7 +239,7 @@ ElementMatrices solid_hex8(const std::vector<Vec3>& x, const SolidProperties& p)
   const double det0 = J0.determinant();
   MatrixXd Kcc = MatrixXd::Zero(24, 24), Kci = MatrixXd::Zero(24, 9), Kii = MatrixXd::Zero(9, 9);
   for (const Point& g : f.stiffness_rule) {
-    const Shape s = hex8_shape(g.r);
+    const SolidShape s = hex8_shape(g.r);
     const Matrix3d J = jacobian(s, X);
     const double det = J.determinant();
     const MatrixXd Bc = strain_B(s.dN * J.inverse());
@@ -306,7 +283,7 @@ double solid_jacobian_ratio(const std::vector<Vec3>& x) {
       static const std::array<Vector3d, 4> corners{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY(),
                                                    Vector3d::UnitZ()};
       points.push_back(a < 4 ? corners[a]
-                             : Vector3d(0.5 * (corners[kTetEdges[a - 4][0]] + corners[kTetEdges[a - 4][1]])));
+                             : Vector3d(0.5 * (corners[kTetMidEdges[a - 4][0]] + corners[kTetMidEdges[a - 4][1]])));
     } else {
       points.push_back(hex_node(a));
     }

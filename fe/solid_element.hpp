@@ -11,12 +11,19 @@
 // mid-edges 1-2, 2-3, 3-4, 4-1, 5-6, 6-7, 7-8, 8-5, 1-5, 2-6, 3-7, 4-8;
 // tet10 corners 1-4 (4 on the side of 1-2-3 where (x2-x1) x (x3-x1) points),
 // mid-edges 1-2, 2-3, 3-1, 1-4, 2-4, 3-4.
+#include <array>
 #include <vector>
 
 #include "fe/element_matrices.hpp"
 #include "fe/model.hpp"
 
 namespace rigflex::fe {
+
+// The corner pairs (0-based) whose mid-edge nodes follow the corners, in
+// node order: the hex20's and the tet10's, as described above.
+inline constexpr std::array<std::array<int, 2>, 12> kHexMidEdges{
+    {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}}};
+inline constexpr std::array<std::array<int, 2>, 6> kTetMidEdges{{{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}}};
 
 struct SolidProperties {
   double E = 0.0;

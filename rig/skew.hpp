@@ -1,13 +1,9 @@
 #pragma once
-// The cross-product matrix: skew(a) b = a x b.
-#include <Eigen/Core>
+// The cross-product matrix, fe's (fe/skew.hpp), where the rig's kinematics use it.
+#include "fe/skew.hpp"
 
 namespace rigflex::rig {
 
-inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
-  Eigen::Matrix3d s;
-  s << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return s;
-}
+using fe::skew;
 
 }  // namespace rigflex::rig

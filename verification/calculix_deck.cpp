@@ -1,4 +1,6 @@
 // The CalculiX input deck of a rigflex model.
+#include "verification/calculix.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -15,7 +17,6 @@
 #include "fe/beam_element.hpp"
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
-#include "verification/calculix.hpp"
 
 namespace rigflex::verification {
 namespace fs = std::filesystem;

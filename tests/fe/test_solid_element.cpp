@@ -34,9 +34,10 @@ using Eigen::VectorXd;
 
 const SolidProperties kSteel{2.1e11, 0.3, 7850.0, MassKind::Consistent};
 
-const int kHexEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
-                              {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-const int kTetEdges[6][2] = {{0, 1}, {1, 2}, {2, 0}, {0, 3}, {1, 3}, {2, 3}};
+// The mid-edge corner pairs of a type (fe/solid_element.hpp).
+std::array<int, 2> mid_edge(const SolidType& t, int e) {
+  return t.nodes == 10 ? kTetMidEdges[static_cast<size_t>(e)] : kHexMidEdges[static_cast<size_t>(e)];
+}
 
 // Reference nodes of each type on the unit cube / unit tetrahedron, in the
 // node order of fe/solid_element.hpp.
@@ -44,13 +45,13 @@ std::vector<Vec3> reference_nodes(const SolidType& t) {
   std::vector<Vec3> x;
   if (t.nodes == 10) {
     x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
-    for (const auto& e : kTetEdges) x.push_back(0.5 * (x[e[0]] + x[e[1]]));
+    for (const auto& e : kTetMidEdges) x.push_back(0.5 * (x[e[0]] + x[e[1]]));
     return x;
   }
   x = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
        Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)};
   if (t.nodes == 20)
-    for (const auto& e : kHexEdges) x.push_back(0.5 * (x[e[0]] + x[e[1]]));
+    for (const auto& e : kHexMidEdges) x.push_back(0.5 * (x[e[0]] + x[e[1]]));
   return x;
 }
 
@@ -63,7 +64,7 @@ std::vector<Vec3> distorted(const SolidType& t, double amount) {
   const int corners = t.nodes == 10 ? 4 : 8;
   for (int a = 0; a < corners; ++a) x[a] += Vec3(u(rng), u(rng), u(rng));
   for (int e = 0; e < t.nodes - corners; ++e) {
-    const int* edge = t.nodes == 10 ? kTetEdges[e] : kHexEdges[e];
+    const std::array<int, 2> edge = mid_edge(t, e);
     x[corners + e] = 0.5 * (x[edge[0]] + x[edge[1]]);
   }
   return x;
@@ -126,7 +127,7 @@ Model patch_model(const SolidType& t) {
   const int corners = t.nodes == 10 ? 4 : 8;
   for (const SolidElement& s : m.solids)
     for (int e = 0; e < t.nodes - corners; ++e) {
-      const int* edge = t.nodes == 10 ? kTetEdges[e] : kHexEdges[e];
+      const std::array<int, 2> edge = mid_edge(t, e);
       const NodeId a = s.nodes[static_cast<size_t>(edge[0])], b = s.nodes[static_cast<size_t>(edge[1])];
       if (a == centre || b == centre)
         m.nodes[m.node_index(s.nodes[static_cast<size_t>(corners + e)])].x = 0.5 * (m.position(a) + m.position(b));
