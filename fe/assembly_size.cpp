@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <vector>
 
+#include "fe/shell_point_mass.hpp"
+
 namespace rigflex::fe {
 namespace {
 
@@ -76,7 +78,15 @@ AssemblySize assembly_size(const Model& model) {
   // Counted as six DOFs per node like the rest: solids' unused rotations are
   // dropped later, so the estimate errs on the safe side.
   for (const SolidElement& s : model.solids) adj.couple(model, s.nodes);
-  for (const PointMass& p : model.point_masses) adj.couple(model, std::vector<NodeId>{p.node});
+  // A rotary mass on a shell node acts over its footprint (shell_point_mass.hpp).
+  for (const PointMassMatrix& p : point_mass_matrices(model)) {
+    std::vector<NodeId> nodes;
+    for (long d : p.dofs) {
+      const NodeId id = model.nodes[static_cast<size_t>(d / 6)].id;
+      if (nodes.empty() || nodes.back() != id) nodes.push_back(id);
+    }
+    adj.couple(model, nodes);
+  }
   for (const Spring& s : model.springs) {
     adj.couple(model, s.other ? std::vector<NodeId>{s.node, *s.other} : std::vector<NodeId>{s.node});
   }

@@ -6,6 +6,7 @@
 #include "fe/beam_element.hpp"
 #include "fe/discrete_elements.hpp"
 #include "fe/error.hpp"
+#include "fe/shell_point_mass.hpp"
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
 
@@ -97,10 +98,12 @@ void visit_solids(const Model& model, const ElementVisitor& visit) {
 
 void visit_discrete(const Model& model, const ElementVisitor& visit) {
   const Eigen::MatrixXd zero6 = Eigen::MatrixXd::Zero(6, 6);
-  for (const PointMass& p : model.point_masses) {
-    const Eigen::MatrixXd m = point_mass_matrix(p);
-    require_finite(zero6, m, "point_mass", p.id);
-    visit(node_dofs(model, {p.node}), zero6, m);
+  const std::vector<PointMassMatrix> masses = point_mass_matrices(model);
+  for (size_t i = 0; i < masses.size(); ++i) {
+    const Eigen::MatrixXd& m = masses[i].M;
+    const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(m.rows(), m.cols());
+    require_finite(zero, m, "point_mass", model.point_masses[i].id);
+    visit(masses[i].dofs, zero, m);
   }
   for (const Spring& s : model.springs) {
     const Vec3& xa = model.position(s.node);

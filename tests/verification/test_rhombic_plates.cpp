@@ -1,0 +1,103 @@
+// NAFEMS FV15 and FV22 (NAFEMS R0015 / TNSB Rev. 3; targets as quoted in
+// Altair's OS-V 0425 and 0435): a 10 m rhombic plate, 45 degree skew,
+// E = 200 GPa, nu = 0.3, rho = 8000 kg/m^3, clamped on all edges (w and
+// both bending rotations), in-plane motion and drilling held everywhere.
+// FV15 is thin (t = 0.05 m, prescribed mesh 12 x 12), FV22 thick (t = 1 m,
+// 10 x 10). They test elements on distorted (parallelogram) meshes.
+//
+// Read from a model file as a user writes it: a shell patch with the
+// benchmark's divisions and no `order`, so the mesher's default element
+// (8-node) is what is checked.
+//
+// Tolerances, per mode, against the targets. The two shell elements,
+// converged (MITC4 at 8x, the 8-node at 4x the prescribed mesh; they agree
+// within 0.3 %), lie up to 1.45 % below FV15's targets and 1.1 % / 2.4 %
+// below FV22's fourth and sixth (docs/fe-core.md): the targets themselves
+// sit that far from the Mindlin plate's solution. So 1.5 % where the
+// element's own error at the prescribed mesh is small (measured at most
+// 1.06 % on FV15, 0.8 % on FV22's modes 1, 2, 3 and 5), and for FV22's
+// modes 4 and 6 - which converge from below, slowly, because the obtuse
+// clamped corners are singular (-2.5 % / -4.3 % at 10 x 10, -1.5 % / -2.9 %
+// at 20 x 20) - 3 % and 5 %. MITC4 (`order: linear`) is checked at twice
+// the prescribed mesh: within 3 % (measured +0.3 .. +2.6 % on FV15; at the
+// prescribed mesh it is up to 16 % high, a stated limit).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "io/model_reader.hpp"
+#include "reduction/modal_analysis.hpp"
+
+namespace rigflex {
+namespace {
+
+struct Benchmark {
+  const char* name;
+  double thickness;
+  int divisions;                    // the prescribed mesh, n x n
+  std::array<double, 6> target;     // Hz
+  std::array<double, 6> tolerance;  // relative, for the default element at the prescribed mesh
+};
+
+const Benchmark kFv15{
+    "FV15", 0.05, 12, {7.938, 12.835, 17.941, 19.133, 24.009, 27.922}, {0.015, 0.015, 0.015, 0.015, 0.015, 0.015}};
+const Benchmark kFv22{
+    "FV22", 1.0, 10, {133.95, 201.41, 265.81, 283.68, 334.45, 386.62}, {0.015, 0.015, 0.015, 0.03, 0.015, 0.05}};
+
+// The model file: the rhombus' corners, its edge nodes clamped by position.
+std::string model_text(const Benchmark& b, int n, const std::string& order) {
+  const double a = 10.0, c = a * std::cos(M_PI / 4.0), s = a * std::sin(M_PI / 4.0);
+  char buf[512];
+  std::snprintf(
+      buf, sizeof buf,
+      "name: %s\nmaterials:\n  steel: {E: 2.0e11, nu: 0.3, rho: 8000}\nshell_sections:\n"
+      "  plate: {material: steel, thickness: %g}\nshell_patches:\n"
+      "  - {id: plate, corners: [[0, 0, 0], [%.17g, 0, 0], [%.17g, %.17g, 0], [%.17g, %.17g, 0]], "
+      "divisions: [%d, %d], %ssection: plate}\n"
+      "node_sets:\n  all: {box: [[-1, -1, -1], [20, 20, 1]]}\nsupports:\n  - {set: all, dofs: [UX, UY, RZ]}\n",
+      b.name, b.thickness, a, a + c, s, c, s, n, n, order.empty() ? "" : ("order: " + order + ", ").c_str());
+  std::string text = buf;
+  const int m = order == "linear" ? n : 2 * n;  // the grid of the element's nodes
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= m; ++j) {
+      if (i != 0 && i != m && j != 0 && j != m) continue;
+      const double u = static_cast<double>(i) / m, v = static_cast<double>(j) / m;
+      std::snprintf(buf, sizeof buf, "  - {at: [%.17g, %.17g, 0], dofs: [UZ, RX, RY]}\n", u * a + v * c, v * s);
+      text += buf;
+    }
+  return text;
+}
+
+Eigen::VectorXd frequencies(const Benchmark& b, int n, const std::string& order) {
+  const io::ModelFile file = io::parse_model(model_text(b, n, order), b.name);
+  linalg::EigenOptions o;
+  o.count = 6;
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(file.model, o);
+  EXPECT_TRUE(a.result.converged) << a.result.message;
+  return a.result.frequencies_hz();
+}
+
+void check(const Benchmark& b, const Eigen::VectorXd& f, const std::array<double, 6>& tolerance, const char* what) {
+  ASSERT_EQ(f.size(), 6);
+  for (int k = 0; k < 6; ++k) {
+    const double error = f(k) / b.target[static_cast<size_t>(k)] - 1.0;
+    std::printf("  %s %s mode %d: %.4f Hz, target %.4f Hz, %+.2f %%\n", b.name, what, k + 1, f(k),
+                b.target[static_cast<size_t>(k)], 100.0 * error);
+    EXPECT_LT(std::abs(error), tolerance[static_cast<size_t>(k)]) << b.name << " " << what << " mode " << k + 1;
+  }
+}
+
+TEST(RhombicPlates, TheDefaultShellMeetsFv15AndFv22AtTheirMeshes) {
+  for (const Benchmark& b : {kFv15, kFv22}) check(b, frequencies(b, b.divisions, ""), b.tolerance, "default 1x");
+}
+
+TEST(RhombicPlates, Mitc4IsWithin3PercentAtTwiceTheMeshes) {
+  const std::array<double, 6> three{0.03, 0.03, 0.03, 0.03, 0.03, 0.03};
+  check(kFv15, frequencies(kFv15, 2 * kFv15.divisions, "linear"), three, "MITC4 2x");
+}
+
+}  // namespace
+}  // namespace rigflex
