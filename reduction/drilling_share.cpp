@@ -2,6 +2,7 @@
 
 #include <array>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace rigflex::reduction {
 
@@ -25,6 +26,22 @@ std::unordered_map<fe::NodeId, fe::Vec3> shell_node_normals(const fe::Model& mod
   for (auto& [id, v] : n) {
     const double norm = v.norm();
     v = norm > 0 ? fe::Vec3(v / norm) : fe::Vec3::Zero();
+  }
+  // A rigid coupling's reference that hangs on one shell node and carries
+  // nothing stiff itself turns with that node's rotations, drilling
+  // included: a mass on it (a block hung on a single node) makes a drilling
+  // mode too, its kinetic energy in the reference's rotation.
+  std::unordered_set<fe::NodeId> stiff;
+  for (const fe::BeamElement& b : model.beams) stiff.insert(b.nodes.begin(), b.nodes.end());
+  for (const fe::SolidElement& e : model.solids) stiff.insert(e.nodes.begin(), e.nodes.end());
+  for (const fe::Spring& k : model.springs) {
+    stiff.insert(k.node);
+    if (k.other) stiff.insert(*k.other);
+  }
+  for (const fe::RigidCoupling& c : model.couplings) {
+    if (c.dependents.size() != 1 || !(c.dofs[3] && c.dofs[4] && c.dofs[5])) continue;
+    const auto it = n.find(c.dependents.front());
+    if (it != n.end() && !n.count(c.reference) && !stiff.count(c.reference)) n.emplace(c.reference, it->second);
   }
   return n;
 }

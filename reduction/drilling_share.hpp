@@ -12,7 +12,9 @@ namespace rigflex::reduction {
 
 // Per column of `vectors` (free DOFs of `dofs`): v' M v / phi' M phi, with v
 // the mode's rotation at each shell node projected onto the node's mean
-// normal (the average of its shells' normals), zero elsewhere. Zeros
+// normal (the average of its shells' normals) - and at the reference of a
+// rigid coupling to a single shell node, onto that node's normal, where
+// nothing stiff is attached to the reference - zero elsewhere. Zeros
 // without shells.
 Eigen::VectorXd shell_drilling_share(const fe::Model& model, const fe::DofMap& dofs, const fe::SpMat& M,
                                      const Eigen::MatrixXd& vectors);
