@@ -12,6 +12,8 @@
 #include "fe/node_selection.hpp"
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
+#include "io/gmsh_mesh.hpp"
+#include "io/input_error.hpp"
 #include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 
@@ -64,10 +66,10 @@ class ModelFileReader {
 
   void read(const YAML::Node& root) {
     c_.expect_map(root, "model file",
-                  {"name",           "description",   "materials",    "beam_sections", "shell_sections",
-                   "nodes",          "node_sets",     "beams",        "shells",        "solids",
-                   "members",        "shell_patches", "solid_blocks", "box_girders",   "fixed_frame",
-                   "carrying_frame", "point_masses",  "springs",      "supports",      "couplings"});
+                  {"name",         "description", "materials",   "beam_sections",  "shell_sections", "nodes",
+                   "node_sets",    "beams",       "shells",      "solids",         "members",        "shell_patches",
+                   "solid_blocks", "box_girders", "fixed_frame", "carrying_frame", "point_masses",   "springs",
+                   "supports",     "couplings",   "meshes"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
@@ -79,6 +81,7 @@ class ModelFileReader {
     each_item(root, "shell_patches", [&](const YAML::Node& v) { patch(v); });
     each_item(root, "solid_blocks", [&](const YAML::Node& v) { solid_block(v); });
     each_item(root, "box_girders", [&](const YAML::Node& v) { box_girder(v); });
+    each_item(root, "meshes", [&](const YAML::Node& v) { mesh(v); });
     if (root["fixed_frame"].IsDefined()) fixed_frame(root["fixed_frame"]);
     if (root["carrying_frame"].IsDefined()) carrying_frame(root["carrying_frame"]);
     each_entry(root, "node_sets", [&](const std::string& n, const YAML::Node& v) { node_set(n, v); });
@@ -481,6 +484,40 @@ class ModelFileReader {
       src_.add("shell_section", s.id + ".web", n);
       src_.add("shell_section", s.id + ".flange", n);
     });
+  }
+  // A Gmsh mesh (io/gmsh_mesh.hpp), its path relative to the model file;
+  // `shells` and `solids` place its physical groups.
+  void mesh(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "file", "shells", "solids", "mass"});
+    GmshPlacement p;
+    p.id = id_or_index(n);
+    p.mass = mass_kind(n);
+    const std::string name = c_.text(n, "file");
+    const std::filesystem::path path = std::filesystem::path(c_.file()).parent_path() / name;
+    if (path.extension() != ".msh") c_.fail(n["file"], "file", "expected a Gmsh mesh (.msh)");
+    const GmshMesh mesh = read_gmsh(path);
+    auto place = [&](const char* key, int dim, std::map<std::string, std::string>& out, const auto& known,
+                     const char* what) {
+      const YAML::Node g = n[key];
+      if (!g.IsDefined()) return;
+      if (!g.IsMap() || g.size() == 0) c_.fail(g, key, std::string("expected {physical group: ") + what + ", ...}");
+      for (const auto& kv : g) {
+        if (!kv.first.IsScalar() || !kv.second.IsScalar())
+          c_.fail(g, key, std::string("expected {physical group: ") + what + ", ...}");
+        const std::string group = kv.first.as<std::string>(), target = kv.second.as<std::string>();
+        if (gmsh_group(mesh, dim, group) < 0)
+          c_.fail(kv.first, key,
+                  "no " + std::string(dim == 2 ? "surface" : "volume") + " physical group '" + group + "' in " +
+                      path.string());
+        if (!known.count(target)) c_.fail(kv.second, key, std::string(what) + " '" + target + "' does not exist");
+        out[group] = target;
+      }
+    };
+    place("shells", 2, p.shells, m_.shell_sections, "shell section");
+    place("solids", 3, p.solids, m_.materials, "material");
+    if (p.shells.empty() && p.solids.empty())
+      c_.fail(n, "shells", "place at least one physical group (shells or solids)");
+    generated(n, p.id, [&] { add_gmsh_mesh(m_, mesh, p, path.string()); });
   }
   void fixed_frame(const YAML::Node& n) {
     index_ = "fixed_frame";
