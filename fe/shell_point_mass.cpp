@@ -7,6 +7,7 @@
 #include <set>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "fe/discrete_elements.hpp"
 #include "fe/distributing_coupling.hpp"
@@ -19,11 +20,17 @@ using namespace shell_detail;
 
 using ShellsAtNode = std::unordered_map<NodeId, std::vector<const ShellElement*>>;
 
-// Nodes whose own rotations something other than a shell stiffens or
-// drives: there the drilling rotation is a physical DOF and a point mass
-// keeps it.
+// Nodes where a point mass keeps its node's rotations: where something
+// other than a shell stiffens, drives or holds them (a beam, a spring, a
+// rigid coupling, a support of a rotation - on a symmetry plane the
+// footprint's rotation is not the node's), and, to stay on the safe side,
+// wherever a solid or a distributing coupling meets the node (they neither
+// stiffen nor drive its rotations, so a rotary mass there can still make a
+// drilling mode).
 std::unordered_set<NodeId> rotation_carriers(const Model& m) {
   std::unordered_set<NodeId> s;
+  for (const Support& u : m.supports)
+    if (u.fixed[3] || u.fixed[4] || u.fixed[5]) s.insert(u.node);
   for (const BeamElement& b : m.beams) s.insert(b.nodes.begin(), b.nodes.end());
   for (const SolidElement& e : m.solids) s.insert(e.nodes.begin(), e.nodes.end());
   for (const Spring& k : m.springs) {
@@ -96,7 +103,8 @@ std::vector<NodeId> footprint(const Model& m, const ShellsAtNode& shells_at, Nod
 
 // At most this many nodes measure a footprint's rotation: the mass matrix
 // is dense over them (3 DOFs each), so a fine mesh under a large footprint
-// is sampled evenly by distance from the node instead of taken whole.
+// is sampled evenly by distance from the node instead of taken whole (every
+// k-th node: between half this number and this number).
 constexpr size_t kMaxFootprintNodes = 100;
 
 std::vector<NodeId> sampled(const Model& m, NodeId node, std::vector<NodeId> nodes) {
@@ -128,8 +136,10 @@ std::vector<long> node_dofs(const Model& m, NodeId id, int count) {
 // The mass on its node's translations, and its rotary inertia on the
 // least-squares rigid rotation of the footprint (the rotation rows G of a
 // distributing coupling over it): [u; G u_footprint].
-PointMassMatrix on_footprint(const Model& m, NodeId node, const Eigen::Matrix<double, 6, 6>& M6,
-                             std::vector<NodeId> nodes, const std::vector<const ShellElement*>& shells) {
+// Nothing where even the shells around the node fix no rotation (elements
+// so slender that their corners lie on a line to round-off).
+std::optional<PointMassMatrix> on_footprint(const Model& m, NodeId node, const Eigen::Matrix<double, 6, 6>& M6,
+                                            std::vector<NodeId> nodes, const std::vector<const ShellElement*>& shells) {
   std::vector<Vec3> x;
   for (NodeId id : nodes) x.push_back(m.position(id));
   std::optional<Eigen::MatrixXd> link = distributing_link(m.position(node), x, {});
@@ -139,7 +149,8 @@ PointMassMatrix on_footprint(const Model& m, NodeId node, const Eigen::Matrix<do
     for (NodeId id : nodes) x.push_back(m.position(id));
     link = distributing_link(m.position(node), x, {});
   }
-  const Eigen::MatrixXd& G = link.value();
+  if (!link) return std::nullopt;
+  const Eigen::MatrixXd& G = *link;
   PointMassMatrix out;
   out.dofs = node_dofs(m, node, 6);
   std::vector<Eigen::Index> column;
@@ -185,8 +196,10 @@ std::vector<PointMassMatrix> point_mass_matrices(const Model& model) {
         // The largest radius of gyration sizes the footprint.
         const double radius = p.mass > 0.0 ? std::sqrt(J.eigenvalues().real().maxCoeff() / p.mass) : 0.0;
         const std::vector<NodeId> nodes = sampled(model, p.node, footprint(model, shells_at, p.node, *n, radius));
-        out.push_back(on_footprint(model, p.node, M6, nodes, it->second));
-        continue;
+        if (std::optional<PointMassMatrix> spread = on_footprint(model, p.node, M6, nodes, it->second)) {
+          out.push_back(std::move(*spread));
+          continue;
+        }
       }
     }
     out.push_back({node_dofs(model, p.node, 6), M6});

@@ -28,14 +28,16 @@ constexpr double kShellPlaneDegrees = 5.0;
 
 // One entry per model.point_masses, in order. A mass with rotary inertia
 // whose node lies only on shells within kShellPlaneDegrees of one plane (no
-// beam, solid, spring or coupling there) acts with its mass on the node's
-// translations and with its inertia on the least-squares rigid rotation of
-// its footprint's translations (the rotation rows of distributing_link):
-// the shells around the node and every shell in that plane reached within
-// the mass's largest radius of gyration sqrt(J_max / m), sampled evenly by
-// distance down to 100 nodes. Rigid motions are exact, so the model's mass
-// properties are unchanged. Every other mass acts on its node's six DOFs as
-// given. The model must be valid.
+// beam, solid, spring, coupling or support of a rotation there) acts with
+// its mass on the node's translations and with its inertia on the
+// least-squares rigid rotation of its footprint's translations (the
+// rotation rows of distributing_link): the shells around the node and every
+// shell in that plane reached within the mass's largest radius of gyration
+// sqrt(J_max / m), sampled evenly by distance to at most 100 nodes. A mass
+// of zero with an inertia has no radius of gyration: its footprint is the
+// shells around its node, which shrink with the mesh. Rigid motions are
+// exact, so the model's mass properties are unchanged. Every other mass
+// acts on its node's six DOFs as given. The model must be valid.
 std::vector<PointMassMatrix> point_mass_matrices(const Model& model);
 
 }  // namespace rigflex::fe

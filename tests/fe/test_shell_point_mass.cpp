@@ -86,8 +86,8 @@ TEST(ShellPointMass, TheRigidBodyMassIsExact) {
 }
 
 // The footprint has a fixed size: the shells around the node, and those
-// reached within the mass's largest radius of gyration (here 0.4 m) - so a
-// finer mesh takes more nodes over the same area.
+// reached within the mass's largest radius of gyration (here 0.4 m, over
+// two elements), and no more than one element beyond it.
 TEST(ShellPointMass, TheFootprintSpansTheRadiusOfGyration) {
   for (const bool quadratic : {false, true}) {
     fe::Model m = test::steel_model();
@@ -128,7 +128,8 @@ fe::NodeId folded_plates(fe::Model& m, double angle) {
 }
 
 // Where the node's own rotations are physical DOFs the mass keeps them, on
-// its node's six DOFs as given: no rotary inertia, a spring at the node, a
+// its node's six DOFs as given: no rotary inertia, a support of a rotation
+// (a symmetry plane) or a spring at the node, a
 // fold whose walls lie more than 5 degrees off their mean plane (one wall's
 // drilling rotation is the other's bending rotation): 90 and 12 degrees.
 // An 8-degree fold (4 degrees each) counts as one plane.
@@ -142,6 +143,11 @@ TEST(ShellPointMass, ANodeWithPhysicalRotationsKeepsThePlainMass) {
     EXPECT_EQ(dofs_of(m), 6u) << "no rotary inertia";
     m.point_masses.front().inertia = J;
     EXPECT_GT(dofs_of(m), 6u) << "flat";
+    m.supports.push_back({"held", node, {false, false, true, false, false, false}});
+    EXPECT_GT(dofs_of(m), 6u) << "a support of a translation";
+    m.supports.back().fixed[3] = true;  // a symmetry plane's rotation
+    EXPECT_EQ(dofs_of(m), 6u) << "a support of a rotation";
+    m.supports.pop_back();
     m.springs.push_back({"spring", node, std::nullopt, {0, 0, 0, 0, 0, 1e3}, std::nullopt, std::nullopt});
     EXPECT_EQ(dofs_of(m), 6u) << "a spring at the node";
   }

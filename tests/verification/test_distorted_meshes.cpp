@@ -11,8 +11,8 @@
 //
 // Tolerances, per mode, against the targets. The two shell elements,
 // converged (MITC4 at 8x, the 8-node at 4x the prescribed mesh; they agree
-// within 0.3 %), lie up to 1.45 % below FV15's targets and 1.1 % / 2.4 %
-// below FV22's fourth and sixth (docs/fe-core.md): the targets themselves
+// within 0.3 %), lie up to 1.45 % below FV15's targets and 0.9-1.1 % /
+// 1.9-2.4 % below FV22's fourth and sixth (docs/fe-core.md): the targets themselves
 // sit that far from the Mindlin plate's solution. So 1.5 % where the
 // element's own error at the prescribed mesh is small (measured at most
 // 1.06 % on FV15, 0.8 % on FV22's modes 1, 2, 3 and 5), and for FV22's
