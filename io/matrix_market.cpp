@@ -32,9 +32,9 @@ std::string entry_name(Eigen::Index i, Eigen::Index j) {
   return "entry (" + std::to_string(i + 1) + ", " + std::to_string(j + 1) + ")";
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+bool matrix_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
-std::vector<std::string_view> split_lines(std::string_view text) {
+std::vector<std::string_view> matrix_lines(std::string_view text) {
   std::vector<std::string_view> lines;
   size_t start = 0;
   while (start < text.size()) {
@@ -46,26 +46,26 @@ std::vector<std::string_view> split_lines(std::string_view text) {
   return lines;
 }
 
-std::vector<std::string_view> tokens(std::string_view line) {
+std::vector<std::string_view> matrix_tokens(std::string_view line) {
   std::vector<std::string_view> out;
   size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && is_blank(line[i])) ++i;
+    while (i < line.size() && matrix_blank(line[i])) ++i;
     const size_t start = i;
-    while (i < line.size() && !is_blank(line[i])) ++i;
+    while (i < line.size() && !matrix_blank(line[i])) ++i;
     if (i > start) out.push_back(line.substr(start, i - start));
   }
   return out;
 }
 
-std::string lower(std::string_view s) {
+std::string matrix_lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return out;
 }
 
-bool skippable(std::string_view line) {
-  const auto t = tokens(line);
+bool matrix_skippable(std::string_view line) {
+  const auto t = matrix_tokens(line);
   return t.empty() || t.front().front() == '%';
 }
 
@@ -73,7 +73,7 @@ enum class Storage { general, symmetric, skew_symmetric };
 
 class Parser {
  public:
-  Parser(std::string_view text, const std::string& source) : lines_(split_lines(text)), source_(source) {}
+  Parser(std::string_view text, const std::string& source) : lines_(matrix_lines(text)), source_(source) {}
 
   Eigen::MatrixXd parse(const std::optional<MatrixShape>& expected) {
     read_header();
@@ -94,19 +94,19 @@ class Parser {
         "expected the header '%%MatrixMarket matrix array|coordinate real|integer "
         "general|symmetric|skew-symmetric'";
     if (lines_.empty()) fail(0, std::string("empty file; ") + kExpected);
-    const auto t = tokens(lines_[0]);
-    if (t.empty() || lower(t[0]) != "%%matrixmarket") fail(0, kExpected);
+    const auto t = matrix_tokens(lines_[0]);
+    if (t.empty() || matrix_lower(t[0]) != "%%matrixmarket") fail(0, kExpected);
     if (t.size() != 5) fail(0, "the header has " + std::to_string(t.size()) + " words; " + kExpected);
-    if (lower(t[1]) != "matrix") fail(0, "object '" + std::string(t[1]) + "': only 'matrix' is read");
-    const std::string format = lower(t[2]);
+    if (matrix_lower(t[1]) != "matrix") fail(0, "object '" + std::string(t[1]) + "': only 'matrix' is read");
+    const std::string format = matrix_lower(t[2]);
     if (format == "coordinate") coordinate_ = true;
     else if (format != "array") fail(0, "format '" + std::string(t[2]) + "': expected array or coordinate");
-    const std::string field = lower(t[3]);
+    const std::string field = matrix_lower(t[3]);
     if (field == "integer") integer_ = true;
     else if (field == "complex" || field == "pattern")
       fail(0, "field '" + std::string(t[3]) + "': only real and integer matrices are read");
     else if (field != "real") fail(0, "field '" + std::string(t[3]) + "': expected real or integer");
-    const std::string symmetry = lower(t[4]);
+    const std::string symmetry = matrix_lower(t[4]);
     if (symmetry == "symmetric") storage_ = Storage::symmetric;
     else if (symmetry == "skew-symmetric") storage_ = Storage::skew_symmetric;
     else if (symmetry == "hermitian") fail(0, "symmetry 'hermitian' belongs to complex matrices, which are not read");
@@ -124,10 +124,10 @@ class Parser {
 
   void read_size(const std::optional<MatrixShape>& expected) {
     next_ = 1;
-    while (next_ < lines_.size() && skippable(lines_[next_])) ++next_;
+    while (next_ < lines_.size() && matrix_skippable(lines_[next_])) ++next_;
     if (next_ == lines_.size()) fail(lines_.size() - 1, "no size line after the header");
     size_line_ = next_++;
-    const auto t = tokens(lines_[size_line_]);
+    const auto t = matrix_tokens(lines_[size_line_]);
     const size_t words = coordinate_ ? 3 : 2;
     if (t.size() != words)
       fail(size_line_, coordinate_ ? "expected the size line 'rows columns entries'" : "expected the size line 'rows columns'");
@@ -203,8 +203,8 @@ class Parser {
     settle();
     long long read = 0;
     for (; next_ < lines_.size(); ++next_) {
-      if (skippable(lines_[next_])) continue;
-      for (const auto token : tokens(lines_[next_])) {
+      if (matrix_skippable(lines_[next_])) continue;
+      for (const auto token : matrix_tokens(lines_[next_])) {
         if (read == total)
           fail(next_, "more values than the " + std::to_string(total) + " of a " + std::to_string(rows_) + " x " +
                           std::to_string(cols_) + " " + storage_name() + " array (size on line " +
@@ -225,8 +225,8 @@ class Parser {
     std::vector<bool> seen(static_cast<size_t>(rows_ * cols_), false);
     long long read = 0;
     for (; next_ < lines_.size(); ++next_) {
-      if (skippable(lines_[next_])) continue;
-      const auto t = tokens(lines_[next_]);
+      if (matrix_skippable(lines_[next_])) continue;
+      const auto t = matrix_tokens(lines_[next_]);
       if (t.size() != 3) fail(next_, "expected an entry 'row column value', found " + std::to_string(t.size()) + " words");
       if (read == entries_)
         fail(next_, "more entries than the " + std::to_string(entries_) + " on the size line (line " +
@@ -266,7 +266,7 @@ class Parser {
 
 std::string matrix_market_text(const Eigen::MatrixXd& A, const std::string& comment) {
   std::string out = "%%MatrixMarket matrix array real general\n";
-  for (auto line : split_lines(comment)) {
+  for (auto line : matrix_lines(comment)) {
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     out.append("% ").append(line).append("\n");
   }

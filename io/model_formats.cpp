@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/abaqus_deck.hpp"
 #include "io/input_error.hpp"
 
 namespace rigflex::io {
@@ -12,6 +13,7 @@ namespace rigflex::io {
 const std::vector<ModelFormat>& model_formats() {
   static const std::vector<ModelFormat> formats{
       {"rigflex YAML model (docs/fe-core.md)", {".yaml", ".yml"}, &parse_model},
+      {"Abaqus / CalculiX input deck (docs/model-exchange.md)", {".inp"}, &parse_abaqus_deck},
   };
   return formats;
 }

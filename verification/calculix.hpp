@@ -130,6 +130,11 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count,
                                              const std::filesystem::path& work_dir,
                                              const CalculixRunOptions& run);
 
+// Runs `ccx -i <run.job>` in work_dir on a <run.job>.inp that is already
+// there (a user's deck, with its *INCLUDE files beside it) and reads its
+// eigenvalue table; errors as run_calculix_frequencies.
+CalculixFrequencies run_calculix_job(const std::filesystem::path& work_dir, const CalculixRunOptions& run);
+
 // Parses the "E I G E N V A L U E   O U T P U T" table of a ccx .dat text
 // (exposed for tests). Throws std::runtime_error if there is none.
 void parse_calculix_eigenvalues(const std::string& dat_text, std::vector<double>& eigenvalues,

@@ -154,20 +154,28 @@ CalculixFrequencies run_calculix_frequencies(const fe::Model& model, int count, 
   opt.modes = count;
   opt.heading = "rigflex cross-check";
   fs::create_directories(work_dir);
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  io::write_text_atomically(work_dir / (run.job + ".inp"), calculix_input(model, opt));
+  const double write_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  CalculixFrequencies r = run_calculix_job(work_dir, run);
+  r.write_seconds = write_seconds;
+  return r;
+}
+
+CalculixFrequencies run_calculix_job(const fs::path& work_dir, const CalculixRunOptions& run) {
+  check_run_options(run);
   CalculixFrequencies r;
   r.input = work_dir / (run.job + ".inp");
   r.dat = work_dir / (run.job + ".dat");
   r.log = work_dir / (run.job + ".log");
-
-  using clock = std::chrono::steady_clock;
-  auto t0 = clock::now();
-  io::write_text_atomically(r.input, calculix_input(model, opt));
-  r.write_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (!fs::is_regular_file(r.input)) throw std::runtime_error("CalculiX input " + r.input.string() + " is not there");
   std::error_code ec;
   fs::remove(r.dat, ec);  // never read a stale table
 
+  using clock = std::chrono::steady_clock;
   struct rusage usage {};
-  t0 = clock::now();
+  const auto t0 = clock::now();
   const int status = run_child({run.executable, "-i", run.job}, work_dir, r.log, child_environment(run), usage);
   r.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
   r.max_rss_kb = usage.ru_maxrss;
