@@ -1,12 +1,14 @@
 // rigflex reduce MODEL.yaml --interface SET [--method guyan|craig-bampton]
 //   [--modes N | --cutoff HZ] [--zeta 0.02] [--zeta-modes 1,3] --out DIR:
 // a frame reduced onto its joint DOFs, with damping, checks and exports.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 
 #include "apps/commands.hpp"
 #include "apps/work_estimate.hpp"
+#include "fe/dof.hpp"
 #include "fe/error.hpp"
 #include "io/input_error.hpp"
 #include "io/model_reader.hpp"
@@ -24,6 +26,7 @@ struct ReduceArgs {
   std::optional<int> modes;
   std::optional<double> cutoff_hz;
   std::string dofs = "translations";
+  std::vector<std::string> node_dofs;  // "NODE:UX,UY,UZ,RZ"
   std::string support;  // empty: from the model
   std::optional<long> reference_node;
   double zeta = 0.02;
@@ -39,6 +42,30 @@ reduction::FrameReductionOptions to_options(const ReduceArgs& a) {
   o.interface_set = a.interface_set;
   o.method = *reduction::parse_reduction_method(a.method);
   o.retained = *reduction::parse_interface_dofs(a.dofs);
+  for (const std::string& spec : a.node_dofs) {
+    const auto colon = spec.find(':');
+    const auto fail = [&](const std::string& why) {
+      throw std::invalid_argument("--node-dofs '" + spec + "': " + why + " (as in 17:UX,UY,UZ,RZ)");
+    };
+    if (colon == std::string::npos) fail("expected NODE:DOFS");
+    long node = 0;
+    try {
+      size_t used = 0;
+      node = std::stol(spec.substr(0, colon), &used);
+      if (used != colon) fail("the node is not an integer");
+    } catch (const std::logic_error&) {
+      fail("the node is not an integer");
+    }
+    fe::DofMask mask{};
+    std::string rest = spec.substr(colon + 1) + ",";
+    for (size_t start = 0, comma; (comma = rest.find(',', start)) != std::string::npos; start = comma + 1) {
+      const std::string name = rest.substr(start, comma - start);
+      const auto it = std::find(fe::kDofNames.begin(), fe::kDofNames.end(), name);
+      if (it == fe::kDofNames.end()) fail("'" + name + "' is not one of UX UY UZ RX RY RZ");
+      mask[static_cast<size_t>(it - fe::kDofNames.begin())] = true;
+    }
+    if (!o.node_dofs.emplace(node, mask).second) fail("node " + std::to_string(node) + " is given twice");
+  }
   if (!a.support.empty()) o.support = *reduction::parse_frame_support(a.support);
   o.reference_node = a.reference_node;
   if (a.modes) o.modes = *a.modes;
@@ -126,7 +153,7 @@ int run(const ReduceArgs& args) {
 void add_reduce_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("reduce", "Reduce a frame onto its joint DOFs (Guyan or Craig-Bampton) and export");
   auto a = std::make_shared<ReduceArgs>();
-  cmd->add_option("model", a->model, "model YAML file")->required();
+  cmd->add_option("model", a->model, "model file (.yaml, or an Abaqus / CalculiX .inp deck)")->required();
   cmd->add_option("--interface", a->interface_set, "node set of the joint centres (the retained nodes)")->required();
   cmd->add_option("--method", a->method, "guyan | craig-bampton")
       ->check(CLI::IsMember({"guyan", "craig-bampton"}));
@@ -136,6 +163,9 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
       ->excludes(modes);
   cmd->add_option("--dofs", a->dofs, "retained DOFs per interface node: translations | all")
       ->check(CLI::IsMember({"translations", "all"}));
+  cmd->add_option("--node-dofs", a->node_dofs,
+                  "NODE:UX,UY,UZ,RZ - the DOFs retained at that interface node instead of --dofs (repeatable; "
+                  "rotations need --dofs all)");
   cmd->add_option("--support", a->support,
                   "grounded | free | reference-node (default: grounded if the model has supports, else free)")
       ->check(CLI::IsMember({"grounded", "free", "reference-node"}));

@@ -90,6 +90,13 @@ AssemblySize assembly_size(const Model& model) {
   for (const Spring& s : model.springs) {
     adj.couple(model, s.other ? std::vector<NodeId>{s.node, *s.other} : std::vector<NodeId>{s.node});
   }
+  for (const Superelement& e : model.superelements) {
+    std::vector<NodeId> nodes = e.modal_nodes;
+    for (const SuperelementDof& d : e.interface) nodes.push_back(d.node);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    adj.couple(model, nodes);
+  }
   for (const RigidCoupling& c : model.couplings) adj.star(model, c.reference, c.dependents);
   // Whatever is attached at the reference couples all of the coupling's
   // nodes with each other once the reference is eliminated.

@@ -120,6 +120,20 @@ void visit_discrete(const Model& model, const ElementVisitor& visit) {
   }
 }
 
+// A superelement's dense matrices on its interface DOFs and its modal
+// nodes' first DOF (Model::validate checked their sizes and symmetry).
+void visit_superelements(const Model& model, const ElementVisitor& visit) {
+  std::vector<long> dofs;
+  for (const Superelement& e : model.superelements) {
+    dofs.clear();
+    for (const SuperelementDof& d : e.interface)
+      dofs.push_back(6 * static_cast<long>(model.node_index(d.node)) + d.local);
+    for (NodeId id : e.modal_nodes) dofs.push_back(6 * static_cast<long>(model.node_index(id)));
+    require_finite(e.K, e.M, "superelement", e.id);
+    visit(dofs, e.K, e.M);
+  }
+}
+
 }  // namespace
 
 void check_element_matrices(const Model& model) {
@@ -128,7 +142,7 @@ void check_element_matrices(const Model& model) {
 
 long element_count(const Model& model) {
   return static_cast<long>(model.beams.size() + model.shells.size() + model.solids.size() + model.point_masses.size() +
-                           model.springs.size());
+                           model.springs.size() + model.superelements.size());
 }
 
 void for_each_element(const Model& model, const ElementVisitor& visit) {
@@ -136,6 +150,7 @@ void for_each_element(const Model& model, const ElementVisitor& visit) {
   visit_shells(model, visit);
   visit_solids(model, visit);
   visit_discrete(model, visit);
+  visit_superelements(model, visit);
 }
 
 }  // namespace rigflex::fe

@@ -15,7 +15,7 @@ using ElementVisitor = std::function<void(const std::vector<long>& full_dofs, co
 // The model must be valid (Model::validate). Throws ModelError naming the
 // element whose matrices are not finite.
 void for_each_element(const Model& model, const ElementVisitor& visit);
-// How many elements for_each_element visits: beams, shells, solids, point masses, springs.
+// How many elements for_each_element visits: beams, shells, solids, point masses, springs, superelements.
 long element_count(const Model& model);
 
 // Computes every element's matrices and throws as for_each_element does: for

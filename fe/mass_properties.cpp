@@ -23,6 +23,10 @@ Eigen::MatrixXd rigid_body_modes(const Model& model, const Vec3& about) {
   for (Eigen::Index i = 0; i < n; ++i) {
     phi.block<6, 6>(6 * i, 0) = rigid_motion_at(model.nodes[static_cast<size_t>(i)].x - about);
   }
+  // A superelement's modal coordinates stay at zero in a rigid motion: its
+  // basis reproduces rigid motions with the interface DOFs alone.
+  for (const Superelement& e : model.superelements)
+    for (NodeId id : e.modal_nodes) phi.block<6, 6>(6 * static_cast<Eigen::Index>(model.node_index(id)), 0).setZero();
   return phi;
 }
 

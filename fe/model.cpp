@@ -4,6 +4,7 @@
 #include <set>
 
 #include "fe/distributing_coupling.hpp"
+#include "fe/dof.hpp"
 #include "fe/error.hpp"
 #include "fe/shell_element.hpp"
 #include "fe/shell_types.hpp"
@@ -231,6 +232,40 @@ void validate_distributing(const Model& m, const DistributingCoupling& c, const 
 
 }  // namespace
 
+namespace {
+
+void validate_superelement(const Model& model, const Superelement& e) {
+  const EntityRef where{"superelement", e.id, ""};
+  const std::string what = "superelement '" + e.id + "'";
+  const auto n = static_cast<Eigen::Index>(e.interface.size() + e.modal_nodes.size());
+  if (e.interface.empty()) throw ModelError(where, what + " has no interface DOF");
+  if (e.K.rows() != n || e.K.cols() != n || e.M.rows() != n || e.M.cols() != n)
+    throw ModelError(where, what + ": K and M must be " + std::to_string(n) + " x " + std::to_string(n) +
+                                " (interface DOFs and modal coordinates)");
+  if (!e.K.allFinite() || !e.M.allFinite()) throw ModelError(where, what + ": K or M is not finite");
+  const double scale_k = std::max(e.K.cwiseAbs().maxCoeff(), 1e-300),
+               scale_m = std::max(e.M.cwiseAbs().maxCoeff(), 1e-300);
+  if ((e.K - e.K.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale_k ||
+      (e.M - e.M.transpose()).cwiseAbs().maxCoeff() > 1e-9 * scale_m)
+    throw ModelError(where, what + ": K and M must be symmetric");
+  std::set<std::pair<NodeId, int>> seen;
+  for (const SuperelementDof& d : e.interface) {
+    require_node(model, d.node, where, what);
+    if (d.local < 0 || d.local > 5) throw ModelError(where, what + ": a DOF index outside 0..5");
+    if (!seen.insert({d.node, d.local}).second)
+      throw ModelError(where, what + ": node " + std::to_string(d.node) + " " + std::string(dof_name(d.local)) +
+                                  " is an interface DOF twice");
+  }
+  std::set<NodeId> modal;
+  for (NodeId id : e.modal_nodes) {
+    require_node(model, id, where, what);
+    if (!modal.insert(id).second || seen.count({id, 0}))
+      throw ModelError(where, what + ": node " + std::to_string(id) + " carries two coordinates");
+  }
+}
+
+}  // namespace
+
 void Model::validate() const {
   for (const auto& [name, mat] : materials) mat.validate();
   for (const auto& [name, sec] : beam_sections) sec.validate();
@@ -259,6 +294,7 @@ void Model::validate() const {
                            " is driven by a distributing coupling (chained couplings are not supported)");
   for (const auto& [name, ids] : node_sets)
     for (NodeId id : ids) require_node(*this, id, {"node_set", name, ""}, "node set '" + name + "'");
+  for (const auto& e : superelements) validate_superelement(*this, e);
 }
 
 }  // namespace rigflex::fe

@@ -114,6 +114,27 @@ struct DistributingCoupling {
   std::vector<double> weights;  // one per node; empty: all 1
 };
 
+// A reduced part placed in the model (a superelement): its stiffness and
+// mass on chosen DOFs of model nodes (its interface) and on generalized
+// coordinates (a Craig-Bampton reduction's fixed-interface modal
+// coordinates). Each generalized coordinate is carried by the first DOF
+// (UX) of a node of its own (`modal_nodes`: generated where the part is
+// placed, touched by nothing else; their other DOFs stay unused and are
+// dropped). Their DOFs are amplitudes, not displacements: rigid-body
+// motions give them zero (fe/mass_properties.hpp).
+struct SuperelementDof {
+  NodeId node = 0;
+  int local = 0;  // 0..5 = UX UY UZ RX RY RZ
+};
+
+struct Superelement {
+  std::string id;
+  std::vector<SuperelementDof> interface;  // the first rows of K and M
+  std::vector<NodeId> modal_nodes;         // the last rows: one generalized coordinate each
+  Eigen::MatrixXd K, M;                    // symmetric, (interface + modal)^2
+  bool grounded = false;                   // reduced with its own supports: it holds the model
+};
+
 class Model {
  public:
   std::vector<Node> nodes;
@@ -128,6 +149,7 @@ class Model {
   std::vector<Support> supports;
   std::vector<RigidCoupling> couplings;
   std::vector<DistributingCoupling> distributing_couplings;
+  std::vector<Superelement> superelements;
   std::map<std::string, std::vector<NodeId>> node_sets;
 
   // Adds a node; throws ModelError on a duplicate id.

@@ -14,6 +14,7 @@
 #include "fe/solid_types.hpp"
 #include "io/gmsh_mesh.hpp"
 #include "io/input_error.hpp"
+#include "io/reduced_export.hpp"
 #include "io/yaml_document.hpp"
 #include "io/yaml_fields.hpp"
 
@@ -69,7 +70,7 @@ class ModelFileReader {
                   {"name",         "description", "materials",   "beam_sections",  "shell_sections", "nodes",
                    "node_sets",    "beams",       "shells",      "solids",         "members",        "shell_patches",
                    "solid_blocks", "box_girders", "fixed_frame", "carrying_frame", "point_masses",   "springs",
-                   "supports",     "couplings",   "meshes"});
+                   "supports",     "couplings",   "meshes",      "superelements"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
@@ -82,6 +83,7 @@ class ModelFileReader {
     each_item(root, "solid_blocks", [&](const YAML::Node& v) { solid_block(v); });
     each_item(root, "box_girders", [&](const YAML::Node& v) { box_girder(v); });
     each_item(root, "meshes", [&](const YAML::Node& v) { mesh(v); });
+    each_item(root, "superelements", [&](const YAML::Node& v) { superelement(v); });
     if (root["fixed_frame"].IsDefined()) fixed_frame(root["fixed_frame"]);
     if (root["carrying_frame"].IsDefined()) carrying_frame(root["carrying_frame"]);
     each_entry(root, "node_sets", [&](const std::string& n, const YAML::Node& v) { node_set(n, v); });
@@ -89,6 +91,7 @@ class ModelFileReader {
     each_item(root, "springs", [&](const YAML::Node& v) { spring(v); });
     each_item(root, "supports", [&](const YAML::Node& v) { support(v); });
     each_item(root, "couplings", [&](const YAML::Node& v) { coupling(v); });
+    add_modal_nodes();
   }
 
  private:
@@ -110,6 +113,13 @@ class ModelFileReader {
     for (const auto& kv : map) f(kv.first.as<std::string>(), kv.second);
   }
   std::string id_or_index(const YAML::Node& n) { return c_.text_or(n, "id", index_); }
+
+  struct Pending {
+    fe::Superelement element;
+    int modes = 0;
+    fe::Vec3 centre;
+  };
+  std::vector<Pending> pending_;
 
   fe::MassKind mass_kind(const YAML::Node& n) {
     const std::string s = c_.text_or(n, "mass", "consistent");
@@ -518,6 +528,50 @@ class ModelFileReader {
     if (p.shells.empty() && p.solids.empty())
       c_.fail(n, "shells", "place at least one physical group (shells or solids)");
     generated(n, p.id, [&] { add_gmsh_mesh(m_, mesh, p, path.string()); });
+  }
+  // A reduced frame (a folder `rigflex reduce --export` wrote) placed where
+  // its interface nodes are: each meets the model's node at its position
+  // (1e-6 m), or becomes a node of its own.
+  void superelement(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"id", "reduced"});
+    fe::Superelement e;
+    e.id = id_or_index(n);
+    const std::filesystem::path dir = std::filesystem::path(c_.file()).parent_path() / c_.text(n, "reduced");
+    if (!std::filesystem::is_directory(dir)) c_.fail(n["reduced"], "reduced", "no such folder: " + dir.string());
+    reduction::ReducedFrame r;
+    try {
+      r = read_reduced_frame(dir);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& x) {
+      c_.fail(n["reduced"], "reduced", x.what());
+    }
+    std::map<fe::NodeId, fe::NodeId> placed;
+    fe::Vec3 centre = fe::Vec3::Zero();
+    for (const reduction::InterfaceNode& node : r.interface_nodes) {
+      const std::vector<fe::NodeId> there = fe::nodes_near(m_, node.position, 1e-6);
+      if (there.size() > 1)
+        c_.fail(n["reduced"], "reduced",
+                "interface node " + std::to_string(node.id) + " meets " + std::to_string(there.size()) +
+                    " model nodes at its position");
+      placed[node.id] = there.empty() ? m_.add_node(m_.has_node(node.id) ? m_.next_node_id() : node.id, node.position)
+                                      : there.front();
+      centre += node.position / static_cast<double>(r.interface_nodes.size());
+    }
+    for (const reduction::InterfaceDof& d : r.interface_dofs) e.interface.push_back({placed.at(d.node), d.local});
+    e.K = std::move(r.K);
+    e.M = std::move(r.M);
+    e.grounded = r.support == reduction::FrameSupport::grounded;
+    src_.add("superelement", e.id, n);
+    pending_.push_back({std::move(e), r.mode_count, centre});
+  }
+  // Last, so that no selector of the file ever takes a modal node.
+  void add_modal_nodes() {
+    for (Pending& p : pending_) {
+      for (int k = 0; k < p.modes; ++k) p.element.modal_nodes.push_back(m_.add_node(m_.next_node_id(), p.centre));
+      m_.superelements.push_back(std::move(p.element));
+    }
+    pending_.clear();
   }
   void fixed_frame(const YAML::Node& n) {
     index_ = "fixed_frame";

@@ -77,10 +77,15 @@ void check_structure(const ReducedFrame& r) {
       refuse_export("interface DOF " + std::string(fe::dof_name(d.local)) + " of node " + std::to_string(d.node) +
              " listed twice");
   }
-  const size_t per_node = r.retained == reduction::InterfaceDofs::translations ? 3 : 6;
-  if (r.interface_dofs.size() != per_node * r.interface_nodes.size())
-    refuse_export(std::to_string(r.interface_dofs.size()) + " interface DOFs for " + std::to_string(r.interface_nodes.size()) +
-           " interface nodes with retained DOFs '" + to_string(r.retained) + "'");
+  // Each node keeps some of its DOFs (those chosen, less those a support holds).
+  const int per_node = r.retained == reduction::InterfaceDofs::translations ? 3 : 6;
+  for (const auto& d : r.interface_dofs)
+    if (d.local >= per_node)
+      refuse_export("interface DOF " + std::string(fe::dof_name(d.local)) + " of node " + std::to_string(d.node) +
+                    " with retained DOFs '" + to_string(r.retained) + "'");
+  std::set<fe::NodeId> kept;
+  for (const auto& d : r.interface_dofs) kept.insert(d.node);
+  if (kept.size() != nodes.size()) refuse_export("an interface node keeps no DOF");
   for (const auto& d : r.checks.static_support)
     if (d.local < 0 || d.local >= fe::kDofsPerNode)
       refuse_export("static_support DOF " + std::to_string(d.local) + " of node " + std::to_string(d.node) + " is not in 0..5");

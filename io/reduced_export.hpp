@@ -24,8 +24,8 @@ inline constexpr int kReducedFrameVersion = 1;
 // Throws std::invalid_argument naming the field when `r` cannot be exported
 // as it is: matrix sizes that contradict the interface DOFs and mode count,
 // a NaN or infinity anywhere, repeated interface nodes or DOFs, a DOF of a
-// node outside the interface or a DOF count other than 3 or 6 per node as
-// `retained` says, a reference node without FrameSupport::reference_node (or
+// node outside the interface, a rotation when `retained` is translations,
+// an interface node that keeps no DOF, a reference node without FrameSupport::reference_node (or
 // the reverse), a node id beyond 2^53 (reduced.mat holds ids as doubles),
 // names that are not UTF-8.
 void check_exportable(const reduction::ReducedFrame& r);

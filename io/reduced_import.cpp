@@ -138,11 +138,16 @@ class FrameReader {
       if (!seen.insert({d.node, d.local}).second) f_.fail(e, "this DOF is listed twice");
       r.interface_dofs.push_back(d);
     }
-    const size_t per_node = r.retained == reduction::InterfaceDofs::translations ? 3 : 6;
-    if (r.interface_dofs.size() != per_node * r.interface_nodes.size())
-      f_.fail(order, std::to_string(r.interface_dofs.size()) + " DOFs, expected " + std::to_string(per_node) +
-                         " for each of the " + std::to_string(r.interface_nodes.size()) +
-                         " interface nodes (retained_dofs '" + to_string(r.retained) + "')");
+    // Each node keeps some of its DOFs (those chosen, less those a support held).
+    const int per_node = r.retained == reduction::InterfaceDofs::translations ? 3 : 6;
+    std::set<fe::NodeId> kept;
+    for (const reduction::InterfaceDof& d : r.interface_dofs) {
+      if (d.local >= per_node)
+        f_.fail(order, "DOF " + std::string(fe::dof_name(d.local)) + " of node " + std::to_string(d.node) +
+                           " with retained_dofs '" + to_string(r.retained) + "'");
+      kept.insert(d.node);
+    }
+    if (kept.size() != ids.size()) f_.fail(order, "an interface node keeps no DOF");
   }
 
   reduction::RayleighDamping damping(const JsonNode& n) const {

@@ -32,17 +32,28 @@ void report(const FrameReductionOptions& o, const std::string& stage) {
   if (o.progress) o.progress(stage);
 }
 
+// A model is held by its supports, or by a superelement that was reduced
+// with its own supports (it holds the model through its stiffness).
+bool held_by_model(const fe::Model& model) {
+  return !model.supports.empty() || std::any_of(model.superelements.begin(), model.superelements.end(),
+                                                [](const fe::Superelement& e) { return e.grounded; });
+}
+
 FrameSupport resolve_support(const fe::Model& model, const FrameReductionOptions& o) {
-  FrameSupport s = o.support.value_or(o.reference_node  ? FrameSupport::reference_node
-                                      : model.supports.empty() ? FrameSupport::free
-                                                               : FrameSupport::grounded);
-  if (s == FrameSupport::grounded && model.supports.empty()) {
-    throw std::invalid_argument("support: a grounded reduction needs supports, and the model has none (use a free "
-                                "or reference-node reduction for a floating frame)");
+  const bool held = held_by_model(model);
+  FrameSupport s = o.support.value_or(o.reference_node ? FrameSupport::reference_node
+                                      : held           ? FrameSupport::grounded
+                                                       : FrameSupport::free);
+  if (s == FrameSupport::grounded && !held) {
+    throw std::invalid_argument(
+        "support: a grounded reduction needs supports (or a grounded superelement), and the "
+        "model has none (use a free or reference-node reduction for a floating frame)");
   }
-  if (s != FrameSupport::grounded && !model.supports.empty()) {
-    throw std::invalid_argument(std::string("support: a ") + to_string(s) + " reduction is for a floating frame, "
-                                "but the model has " + std::to_string(model.supports.size()) + " supports");
+  if (s != FrameSupport::grounded && held) {
+    throw std::invalid_argument(std::string("support: a ") + to_string(s) +
+                                " reduction is for a floating frame, but the model is held by " +
+                                (model.supports.empty() ? std::string("a grounded superelement")
+                                                        : std::to_string(model.supports.size()) + " supports"));
   }
   return s;
 }
@@ -85,25 +96,47 @@ std::vector<InterfaceNode> interface_nodes(const fe::Model& model, const FrameRe
   return nodes;
 }
 
-// Free-DOF columns of the interface DOFs; a DOF that is not free is an error.
+// Free-DOF columns of the interface DOFs. A DOF a support holds is left out
+// (it does not move); any other DOF that is not free is an error.
 std::vector<Eigen::Index> interface_columns(const fe::Model& model, const fe::DofMap& dofs,
-                                            const std::vector<InterfaceNode>& nodes, InterfaceDofs retained,
-                                            const std::string& set, std::vector<InterfaceDof>& order) {
+                                            const std::vector<InterfaceNode>& nodes, const FrameReductionOptions& o,
+                                            std::vector<InterfaceDof>& order) {
+  std::map<fe::NodeId, fe::DofMask> held;
+  for (const fe::Support& s : model.supports)
+    for (size_t d = 0; d < 6; ++d) held[s.node][d] = held[s.node][d] || s.fixed[d];
+  for (const auto& [id, mask] : o.node_dofs)
+    if (std::none_of(nodes.begin(), nodes.end(), [&](const InterfaceNode& n) { return n.id == id; }))
+      throw fe::ModelError({"node_set", o.interface_set, ""}, "DOFs are chosen for node " + std::to_string(id) +
+                                                                  ", which is not in the interface set '" +
+                                                                  o.interface_set + "'");
   std::vector<Eigen::Index> cols;
-  const int per_node = retained == InterfaceDofs::all ? 6 : 3;
+  const int per_node = o.retained == InterfaceDofs::all ? 6 : 3;
   for (const auto& n : nodes) {
-    for (int d = 0; d < per_node; ++d) {
+    const auto chosen = o.node_dofs.find(n.id);
+    size_t kept = 0;
+    for (int d = 0; d < 6; ++d) {
+      const bool wanted = chosen != o.node_dofs.end() ? chosen->second[static_cast<size_t>(d)] : d < per_node;
+      if (!wanted) continue;
+      if (d >= per_node)
+        throw fe::ModelError({"node_set", o.interface_set, ""},
+                             "node " + std::to_string(n.id) + " " + std::string(fe::dof_name(d)) +
+                                 ": a rotation is retained only with retained DOFs 'all'");
+      const auto h = held.find(n.id);
+      if (h != held.end() && h->second[static_cast<size_t>(d)]) continue;  // held: it does not move
       const long col = dofs.full_to_free[model.node_index(n.id) * fe::kDofsPerNode + static_cast<size_t>(d)];
       if (col < 0) {
-        throw fe::ModelError({"node_set", set, ""},
+        throw fe::ModelError({"node_set", o.interface_set, ""},
                              "interface DOF node " + std::to_string(n.id) + " " + std::string(fe::dof_name(d)) +
-                                 " is not a free DOF: it is held by a support, driven by a coupling (a rigid "
-                                 "coupling's dependent or a distributing coupling's reference), or carries neither "
-                                 "stiffness nor mass");
+                                 " is not a free DOF: it is driven by a coupling (a rigid coupling's dependent or a "
+                                 "distributing coupling's reference), or carries neither stiffness nor mass");
       }
       cols.push_back(col);
       order.push_back({n.id, d});
+      ++kept;
     }
+    if (kept == 0)
+      throw fe::ModelError({"node_set", o.interface_set, ""},
+                           "interface node " + std::to_string(n.id) + " keeps no DOF (all chosen DOFs are held)");
   }
   return cols;
 }
@@ -300,8 +333,7 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
   fe::AssemblyOptions ao;
   ao.progress = o.assembly_progress;
   const fe::AssembledSystem sys = fe::assemble(held, ao);
-  const std::vector<Eigen::Index> boundary =
-      interface_columns(held, sys.dofs, r.interface_nodes, o.retained, o.interface_set, r.interface_dofs);
+  const std::vector<Eigen::Index> boundary = interface_columns(held, sys.dofs, r.interface_nodes, o, r.interface_dofs);
   r.full_free_dofs = sys.dofs.free_count();
 
   report(o, std::string("reducing (") + to_string(o.method) + ")");

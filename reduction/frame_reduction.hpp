@@ -4,6 +4,7 @@
 // with every reduction (reduced_model.hpp).
 #include <array>
 #include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,10 @@ namespace rigflex::reduction {
 struct FrameReductionOptions {
   std::string interface_set;  // node set naming the joint centres (required)
   InterfaceDofs retained = InterfaceDofs::translations;
+  // Per node, the DOFs retained instead of `retained` (nodes of the
+  // interface set only; at least one DOF each; translations only when
+  // `retained` is translations, as the exported files say).
+  std::map<fe::NodeId, fe::DofMask> node_dofs;
   ReductionMethod method = ReductionMethod::guyan;
   int modes = 0;                    // Craig-Bampton mode count ...
   std::optional<double> cutoff_hz;  // ... or cutoff
@@ -44,7 +49,9 @@ struct FrameReductionOptions {
 
 // Throws fe::ModelError for an invalid model or an interface set that is
 // missing, empty, or names a node that is not in the model or whose DOF is
-// held or dependent; std::invalid_argument for invalid options, for a
+// dependent or unused. An interface DOF that a support holds is left out of
+// the interface (a partly supported interface node keeps its free DOFs);
+// a node with no DOF left is an error; std::invalid_argument for invalid options, for a
 // grounded reduction of a model without supports (or a free one with
 // supports) and for mode indices beyond what the model has. Numerical
 // failures (a mechanism, no convergence) throw ReductionError with the free
