@@ -15,6 +15,7 @@ void add_identify_command(CLI::App& app, int& exit_code);
 void add_sweep_command(CLI::App& app, int& exit_code);
 void add_compare_command(CLI::App& app, int& exit_code);
 void add_diagnose_command(CLI::App& app, int& exit_code);
+void add_export_command(CLI::App& app, int& exit_code);
 
 // A number accepted when `ok(value)`, else refused with a plain message
 // ("--histories: must be positive, got 0"): CLI11's PositiveNumber names its

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = 0;
   rigflex::app::add_mass_command(app, exit_code);
+  rigflex::app::add_export_command(app, exit_code);
   rigflex::app::add_modes_command(app, exit_code);
   rigflex::app::add_reduce_command(app, exit_code);
   rigflex::app::add_simulate_command(app, exit_code);

@@ -87,6 +87,8 @@ class DeckReader {
       : cards_(std::move(cards)), source_(std::move(source)) {}
 
   ModelFile read() {
+    // Materials first: decks name them in sections before defining them.
+    for (const DeckCard& c : cards_) material_card(c);
     for (i_ = 0; i_ < cards_.size(); ++i_) model_card(cards_[i_]);
     build_elements();
     build_supports();
@@ -159,9 +161,17 @@ class DeckReader {
   }
 
   // ---- cards ---------------------------------------------------------------
+  void material_card(const DeckCard& c) {
+    const std::string& k = c.keyword;
+    if (k == "MATERIAL") return material(c);
+    if (k == "ELASTIC") return elastic(c);
+    if (k == "DENSITY") return density(c);
+    material_ = nullptr;
+  }
+
   void model_card(const DeckCard& c) {
     const std::string& k = c.keyword;
-    if (k != "ELASTIC" && k != "DENSITY") material_ = nullptr;
+    if (k == "MATERIAL" || k == "ELASTIC" || k == "DENSITY") return;  // read first
     if (k != "TRANSVERSE SHEAR STIFFNESS") general_section_ = -1;
     if (in_step_) return step_card(c);
     if (k == "HEADING") return heading(c);
@@ -170,9 +180,6 @@ class DeckReader {
     if (k == "ELEMENT") return elements(c);
     if (k == "NSET") return node_set(c);
     if (k == "ELSET") return element_set(c);
-    if (k == "MATERIAL") return material(c);
-    if (k == "ELASTIC") return elastic(c);
-    if (k == "DENSITY") return density(c);
     if (k == "BEAM SECTION") return beam_section(c);
     if (k == "BEAM GENERAL SECTION") return beam_general_section(c);
     if (k == "TRANSVERSE SHEAR STIFFNESS") return transverse_shear(c);
@@ -430,7 +437,7 @@ class DeckReader {
   // The model's material of that deck name, added on first use.
   std::string use_material(const DeckCard& c, const std::string& name) {
     const auto it = materials_.find(deck_upper(name));
-    if (it == materials_.end()) fail(c.at, "MATERIAL", "material '" + name + "' is not defined before");
+    if (it == materials_.end()) fail(c.at, "MATERIAL", "material '" + name + "' is not defined");
     const Material& d = it->second;
     if (!d.E) fail(d.at, "*MATERIAL", "material '" + d.name + "' has no *ELASTIC");
     if (!m_.materials.count(d.name)) {
@@ -658,8 +665,10 @@ class DeckReader {
       p.values = {number(c.data[1], 0, c, "stiffness")};
       if (c.data.size() > 2) fail(c.data[2].at, key(c), "temperature-dependent stiffness is not supported");
     } else {
-      // SPRINGA: the stiffness alone (CalculiX) or after an empty first line (Abaqus, dropped as blank).
-      p.values = {number(first_line(c, "the stiffness"), 0, c, "stiffness")};
+      // SPRINGA: the stiffness alone (CalculiX) or after an empty first line (Abaqus: "," or blank).
+      const bool empty_first = c.data.size() == 2 && std::all_of(c.data[0].fields.begin(), c.data[0].fields.end(),
+                                                                 [](const std::string& f) { return f.empty(); });
+      p.values = {number(empty_first ? c.data[1] : first_line(c, "the stiffness"), 0, c, "stiffness")};
     }
     for (long id : set.labels)
       if (elements_.at(id).type != type)

@@ -104,11 +104,13 @@ std::vector<Eigen::Index> interface_columns(const fe::Model& model, const fe::Do
   std::map<fe::NodeId, fe::DofMask> held;
   for (const fe::Support& s : model.supports)
     for (size_t d = 0; d < 6; ++d) held[s.node][d] = held[s.node][d] || s.fixed[d];
-  for (const auto& [id, mask] : o.node_dofs)
+  for (const auto& chosen : o.node_dofs) {
+    const fe::NodeId id = chosen.first;
     if (std::none_of(nodes.begin(), nodes.end(), [&](const InterfaceNode& n) { return n.id == id; }))
       throw fe::ModelError({"node_set", o.interface_set, ""}, "DOFs are chosen for node " + std::to_string(id) +
                                                                   ", which is not in the interface set '" +
                                                                   o.interface_set + "'");
+  }
   std::vector<Eigen::Index> cols;
   const int per_node = o.retained == InterfaceDofs::all ? 6 : 3;
   for (const auto& n : nodes) {

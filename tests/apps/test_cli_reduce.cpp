@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "apps/cli_support.hpp"
+#include "io/model_reader.hpp"
 #include "io/reduced_export.hpp"
 #include "io/reduced_mat.hpp"
 
@@ -108,6 +109,47 @@ TEST(CliReduce, InterfaceThatCannotHoldAFloatingFrameNamesTheFreeDofs) {
   EXPECT_NE(r.out.find("node "), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));
   fs::remove(model);
+}
+
+}  // namespace
+
+namespace {
+
+using namespace rigflex::test;
+
+// `rigflex export`: a model's deck, a reduced frame's DMIG and Abaqus
+// matrices, and the usage errors (exit 2, nothing written).
+TEST(CliExport, DeckDmigAndAbaqusMatricesOfTheCarryingFrame) {
+  const fs::path out = fresh_dir("export_carrying");
+  CliRun r = run("export " + example("carrying-frame") + " --deck " + (out / "frame.inp").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  std::ifstream deck(out / "frame.inp");
+  const std::string text((std::istreambuf_iterator<char>(deck)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("*STEP\n*FREQUENCY\n10\n"), std::string::npos);
+  EXPECT_NE(text.find("*EQUATION"), std::string::npos);  // the frame's rigid couplings
+  r = run("reduce " + example("carrying-frame") +
+          " --interface lower_joints --method craig-bampton --modes 4 --quiet "
+          "--node-dofs " +
+          std::to_string(rigflex::io::read_model(example("carrying-frame")).model.node_set("lower_joints")[0]) +
+          ":UX,UZ --out " + (out / "red").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  EXPECT_EQ(rigflex::io::read_reduced_frame(out / "red").interface_dofs.size(), 8u);  // 2 + 3 + 3
+  r = run("export --reduced " + (out / "red").string() + " --dmig " + (out / "frame.dmig").string() +
+          " --abaqus-matrix " + (out / "frame_abq.inp").string());
+  ASSERT_EQ(r.code, 0) << r.out;
+  for (const char* f : {"frame.dmig", "frame_abq.inp", "frame_abq_K.txt", "frame_abq_M.txt", "frame_abq_C.txt"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  for (const std::string& bad :
+       {"export --reduced " + (out / "red").string(), "export " + example("carrying-frame"),
+        "export --reduced " + (out / "red").string() + " --abaqus-matrix " + (out / "x.txt").string(),
+        "reduce " + example("carrying-frame") + " --interface lower_joints --node-dofs 1:UQ --out " +
+            (out / "bad").string()}) {
+    r = run(bad);
+    EXPECT_EQ(r.code, 2) << bad << "\n" << r.out;
+  }
+  EXPECT_FALSE(fs::exists(out / "x.txt"));
+  EXPECT_FALSE(fs::exists(out / "bad"));
+  fs::remove_all(out);
 }
 
 }  // namespace

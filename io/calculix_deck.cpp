@@ -1,5 +1,4 @@
-// The CalculiX input deck of a rigflex model.
-#include "verification/calculix.hpp"
+#include "io/calculix_deck.hpp"
 
 #include <algorithm>
 #include <array>
@@ -18,9 +17,7 @@
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
 
-namespace rigflex::verification {
-namespace fs = std::filesystem;
-
+namespace rigflex::io {
 namespace {
 
 // Text of a double for ccx, which reads at most 20 characters per field
@@ -44,9 +41,7 @@ std::string num(double v) {
 
 std::string vec_text(const fe::Vec3& v) { return num(v.x()) + ", " + num(v.y()) + ", " + num(v.z()); }
 
-[[noreturn]] void unsupported(const std::string& what) {
-  throw std::invalid_argument("CalculiX export: " + what);
-}
+[[noreturn]] void unsupported(const std::string& what) { throw std::invalid_argument("CalculiX export: " + what); }
 
 class InputWriter {
  public:
@@ -60,7 +55,8 @@ class InputWriter {
     check_unsupported();
 
     out_.reserve(m_.nodes.size() * 80 + m_.shells.size() * 60 + 4096);
-    out_ += "** CalculiX 2.20 *FREQUENCY input written by rigflex (verification/calculix_deck.cpp).\n";
+    out_ += std::string("** ") + (opt_.dialect == CalculixDialect::abaqus ? "Abaqus" : "CalculiX 2.20") +
+            " *FREQUENCY input written by rigflex (io/calculix_deck.cpp).\n";
     out_ += "** Beams are B32R, MITC4 shells S4, 8-node shells S8R; ccx expands them into\n";
     out_ += "** C3D20R / C3D8I solids internally. Solids are C3D8I, C3D20 and C3D10.\n";
     if (!opt_.heading.empty()) out_ += "*HEADING\n" + opt_.heading + "\n";
@@ -140,9 +136,10 @@ class InputWriter {
     }
     for (const auto& p : m_.point_masses)
       for (double j : p.inertia)
-        if (j != 0.0)
+        if (j != 0.0 && opt_.dialect == CalculixDialect::calculix)
           unsupported("point mass '" + p.id +
-                      "' has rotary inertia; ccx 2.20 MASS elements carry translational mass only");
+                      "' has rotary inertia; ccx 2.20 MASS elements carry translational mass only (Abaqus's "
+                      "ROTARYI does: export for Abaqus)");
     for (const auto& s : m_.springs)
       for (int d = 3; d < 6; ++d)
         if (s.stiffness[static_cast<size_t>(d)] != 0.0)
@@ -166,8 +163,10 @@ class InputWriter {
     for (const auto& c : m_.couplings) rot_node_.push_back(new_node(m_.position(c.reference)));
     make_knot_anchors();
     for (const auto& s : m_.springs)
-      if (s.axial && *s.axial != 0.0 && !s.other) anchor_.push_back(new_node(m_.position(s.node) + s.direction->normalized()));
-      else anchor_.push_back(0);
+      if (s.axial && *s.axial != 0.0 && !s.other)
+        anchor_.push_back(new_node(m_.position(s.node) + s.direction->normalized()));
+      else
+        anchor_.push_back(0);
 
     out_ += "*NODE, NSET=NALL\n";
     for (const fe::Node& n : m_.nodes) out_ += std::to_string(id(n.id)) + ", " + vec_text(n.x) + "\n";
@@ -279,8 +278,7 @@ class InputWriter {
     std::map<std::string, Group> groups;
     for (size_t i = 0; i < m_.beams.size(); ++i) {
       const fe::BeamElement& b = m_.beams[i];
-      const Eigen::Matrix3d R =
-          fe::beam_local_axes(m_.position(b.nodes[0]), m_.position(b.nodes[1]), b.orientation);
+      const Eigen::Matrix3d R = fe::beam_local_axes(m_.position(b.nodes[0]), m_.position(b.nodes[1]), b.orientation);
       const fe::Vec3 n1 = R.row(1).transpose();  // ccx n1 = rigflex local y, so n2 = t x n1 = local z
       const bool massless = b.mass == fe::MassKind::None;
       const std::string key = b.section + "|" + (massless ? "0" : "1") + "|" + vec_text(n1);
@@ -309,7 +307,8 @@ class InputWriter {
           break;
         case fe::SectionShape::Circle:
           kind = "CIRC";
-          dims = num(s.diameter) + ", " + num(s.diameter);
+          dims = opt_.dialect == CalculixDialect::abaqus ? num(0.5 * s.diameter)
+                                                         : num(s.diameter) + ", " + num(s.diameter);
           break;
         case fe::SectionShape::Tube:
           kind = "PIPE";
@@ -317,10 +316,10 @@ class InputWriter {
           break;
         case fe::SectionShape::Box: {
           kind = "BOX";
-          const double tw = s.web_thickness > 0 ? s.web_thickness : s.wall;      // walls at +-y (n1)
+          const double tw = s.web_thickness > 0 ? s.web_thickness : s.wall;        // walls at +-y (n1)
           const double tf = s.flange_thickness > 0 ? s.flange_thickness : s.wall;  // walls at +-z (n2)
-          dims = num(s.width) + ", " + num(s.height) + ", " + num(tw) + ", " + num(tf) + ", " + num(tw) + ", " +
-                 num(tf);
+          dims =
+              num(s.width) + ", " + num(s.height) + ", " + num(tw) + ", " + num(tf) + ", " + num(tw) + ", " + num(tf);
           break;
         }
         default:
@@ -365,7 +364,8 @@ class InputWriter {
         out_ += "\n";
       }
       const fe::ShellSection& s = m_.shell_sections.at(g.section);
-      out_ += "*SHELL SECTION, ELSET=" + elset + ", MATERIAL=" + material_name(s.material, g.massless ? Variant::massless : Variant::plain) + "\n" +
+      out_ += "*SHELL SECTION, ELSET=" + elset +
+              ", MATERIAL=" + material_name(s.material, g.massless ? Variant::massless : Variant::plain) + "\n" +
               num(s.thickness) + "\n";
     }
   }
@@ -414,9 +414,19 @@ class InputWriter {
     for (const auto& p : m_.point_masses) {
       if (p.mass == 0.0) continue;
       const std::string elset = "EM" + std::to_string(++k);
-      out_ += "** point mass '" + p.id + "'\n*ELEMENT, TYPE=MASS, ELSET=" + elset + "\n" +
-              std::to_string(++element_) + ", " + std::to_string(id(p.node)) + "\n";
+      out_ += "** point mass '" + p.id + "'\n*ELEMENT, TYPE=MASS, ELSET=" + elset + "\n" + std::to_string(++element_) +
+              ", " + std::to_string(id(p.node)) + "\n";
       out_ += "*MASS, ELSET=" + elset + "\n" + num(p.mass) + "\n";
+    }
+    // Abaqus only (check_unsupported): the tensor's terms about the node, as rigflex's.
+    for (const auto& p : m_.point_masses) {
+      if (std::all_of(p.inertia.begin(), p.inertia.end(), [](double j) { return j == 0.0; })) continue;
+      const std::string elset = "EJ" + std::to_string(++k);
+      out_ += "** rotary inertia of point mass '" + p.id + "'\n*ELEMENT, TYPE=ROTARYI, ELSET=" + elset + "\n" +
+              std::to_string(++element_) + ", " + std::to_string(id(p.node)) + "\n*ROTARY INERTIA, ELSET=" + elset +
+              "\n";
+      for (size_t j = 0; j < 6; ++j) out_ += (j ? ", " : "") + num(p.inertia[j]);
+      out_ += "\n";
     }
   }
 
@@ -431,8 +441,8 @@ class InputWriter {
         const std::string elset = "EK" + std::to_string(++k);
         if (s.other) {
           out_ += "** spring '" + s.id + "'\n*ELEMENT, TYPE=SPRING2, ELSET=" + elset + "\n" +
-                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + ", " +
-                  std::to_string(id(*s.other)) + "\n";
+                  std::to_string(++element_) + ", " + std::to_string(id(s.node)) + ", " + std::to_string(id(*s.other)) +
+                  "\n";
           out_ += "*SPRING, ELSET=" + elset + "\n" + std::to_string(d + 1) + ", " + std::to_string(d + 1) + "\n" +
                   num(kd) + "\n";
         } else {
@@ -446,8 +456,7 @@ class InputWriter {
       if (s.other) {
         b = id(*s.other);
         const fe::Vec3 line = m_.position(*s.other) - m_.position(s.node);
-        if (s.direction && line.norm() > 0 &&
-            line.normalized().cross(s.direction->normalized()).norm() > 1e-9)
+        if (s.direction && line.norm() > 0 && line.normalized().cross(s.direction->normalized()).norm() > 1e-9)
           unsupported("spring '" + s.id +
                       "': an axial spring between two nodes along a direction other than the line between "
                       "them has no ccx element (SPRINGA acts along the line)");
@@ -460,7 +469,9 @@ class InputWriter {
       const std::string elset = "EK" + std::to_string(++k);
       out_ += "** axial spring '" + s.id + "'\n*ELEMENT, TYPE=SPRINGA, ELSET=" + elset + "\n" +
               std::to_string(++element_) + ", " + std::to_string(a) + ", " + std::to_string(b) + "\n";
-      out_ += "*SPRING, ELSET=" + elset + "\n" + num(*s.axial) + "\n";
+      // Abaqus's SPRINGA has an empty first data line.
+      out_ += "*SPRING, ELSET=" + elset + "\n" + (opt_.dialect == CalculixDialect::abaqus ? ",\n" : "") +
+              num(*s.axial) + "\n";
     }
   }
 
@@ -569,6 +580,8 @@ CalculixDeck calculix_deck(const fe::Model& model, const CalculixOptions& opt) {
   return deck;
 }
 
-std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) { return calculix_deck(model, opt).text; }
+std::string calculix_input(const fe::Model& model, const CalculixOptions& opt) {
+  return calculix_deck(model, opt).text;
+}
 
-}  // namespace rigflex::verification
+}  // namespace rigflex::io
