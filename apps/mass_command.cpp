@@ -13,7 +13,7 @@ void add_mass_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("mass", "Mass, CoG and inertia tensor (about the CoG) of a model");
   auto file = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("model", *file, "model YAML file")->required();
+  cmd->add_option("model", *file, "model file (.yaml, or an Abaqus / CalculiX .inp deck)")->required();
   cmd->add_flag("--json", *json, "print the mass properties record as JSON");
   cmd->callback([file, json, &exit_code] {
     const io::ModelFile m = io::read_model(*file);

@@ -191,7 +191,7 @@ int run(const ModesArgs& args) {
 void add_modes_command(CLI::App& app, int& exit_code) {
   auto* cmd = app.add_subcommand("modes", "Natural frequencies and mode shapes of a model");
   auto args = std::make_shared<ModesArgs>();
-  cmd->add_option("model", args->model, "model YAML file")->required();
+  cmd->add_option("model", args->model, "model file (.yaml, or an Abaqus / CalculiX .inp deck)")->required();
   cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(positive());
   cmd->add_option("--out", args->out, "folder for modes.json, modes.pvd and mode_NNN.vtu");
   cmd->add_option("--shift-hz", args->shift_hz, "spectral shift as a frequency: sigma = -(2 pi f)^2");
