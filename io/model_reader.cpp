@@ -1,8 +1,10 @@
 #include "io/model_reader.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "fe/dof.hpp"
@@ -70,7 +72,7 @@ class ModelFileReader {
                   {"name",         "description", "materials",   "beam_sections",  "shell_sections", "nodes",
                    "node_sets",    "beams",       "shells",      "solids",         "members",        "shell_patches",
                    "solid_blocks", "box_girders", "fixed_frame", "carrying_frame", "point_masses",   "springs",
-                   "supports",     "couplings",   "meshes",      "superelements"});
+                   "supports",     "couplings",   "meshes",      "superelements",  "element_sets",   "assign"});
     each_entry(root, "materials", [&](const std::string& n, const YAML::Node& v) { material(n, v); });
     each_entry(root, "beam_sections", [&](const std::string& n, const YAML::Node& v) { beam_section(n, v); });
     each_entry(root, "shell_sections", [&](const std::string& n, const YAML::Node& v) { shell_section(n, v); });
@@ -87,6 +89,8 @@ class ModelFileReader {
     if (root["fixed_frame"].IsDefined()) fixed_frame(root["fixed_frame"]);
     if (root["carrying_frame"].IsDefined()) carrying_frame(root["carrying_frame"]);
     each_entry(root, "node_sets", [&](const std::string& n, const YAML::Node& v) { node_set(n, v); });
+    each_entry(root, "element_sets", [&](const std::string& n, const YAML::Node& v) { element_set(n, v); });
+    each_item(root, "assign", [&](const YAML::Node& v) { assignment(v); });
     each_item(root, "point_masses", [&](const YAML::Node& v) { point_mass(v); });
     each_item(root, "springs", [&](const YAML::Node& v) { spring(v); });
     each_item(root, "supports", [&](const YAML::Node& v) { support(v); });
@@ -113,6 +117,12 @@ class ModelFileReader {
     for (const auto& kv : map) f(kv.first.as<std::string>(), kv.second);
   }
   std::string id_or_index(const YAML::Node& n) { return c_.text_or(n, "id", index_); }
+
+  struct ElementRef {
+    char kind = 'b';  // beam, shell, solid ('v')
+    size_t index = 0;
+  };
+  std::map<std::string, std::vector<ElementRef>> element_sets_;
 
   struct Pending {
     fe::Superelement element;
@@ -646,6 +656,82 @@ class ModelFileReader {
     }
     c_.expect_map(n, "node set '" + name + "'", {"nodes", "set", "box", "line", "plane", "near", "node", "at"});
     m_.node_sets[name] = node_list(n);
+  }
+  // Elements by id, or every beam, shell and solid whose nodes all lie in a
+  // node selection (a node set, or box / line / plane / near).
+  void element_set(const std::string& name, const YAML::Node& n) {
+    src_.add("element_set", name, n);
+    c_.expect_map(n, "element set '" + name + "'", {"elements", "set", "box", "line", "plane", "near"});
+    int given = 0;
+    for (const char* k : {"elements", "set", "box", "line", "plane", "near"}) given += n[k].IsDefined();
+    if (given != 1) c_.fail(n, "elements", "give exactly one of 'elements', 'set', 'box', 'line', 'plane' or 'near'");
+    std::vector<ElementRef> out;
+    if (n["elements"].IsDefined()) {
+      c_.expect_sequence(n["elements"], "elements");
+      for (const auto& v : n["elements"]) {
+        if (!v.IsScalar()) c_.fail(v, "elements", "expected element ids");
+        const std::string id = v.as<std::string>();
+        std::vector<ElementRef> found;
+        for (size_t i = 0; i < m_.beams.size(); ++i)
+          if (m_.beams[i].id == id) found.push_back({'b', i});
+        for (size_t i = 0; i < m_.shells.size(); ++i)
+          if (m_.shells[i].id == id) found.push_back({'s', i});
+        for (size_t i = 0; i < m_.solids.size(); ++i)
+          if (m_.solids[i].id == id) found.push_back({'v', i});
+        if (found.size() != 1)
+          c_.fail(v, "elements",
+                  found.empty() ? "no beam, shell or solid '" + id + "'" : "'" + id + "' names elements of two kinds");
+        out.push_back(found.front());
+      }
+    } else {
+      const std::vector<NodeId> ids = node_list(n);
+      const std::set<NodeId> chosen(ids.begin(), ids.end());
+      auto inside = [&](const auto& nodes) {
+        return std::all_of(nodes.begin(), nodes.end(), [&](NodeId id) { return chosen.count(id) != 0; });
+      };
+      for (size_t i = 0; i < m_.beams.size(); ++i)
+        if (inside(m_.beams[i].nodes)) out.push_back({'b', i});
+      for (size_t i = 0; i < m_.shells.size(); ++i)
+        if (inside(m_.shells[i].nodes)) out.push_back({'s', i});
+      for (size_t i = 0; i < m_.solids.size(); ++i)
+        if (inside(m_.solids[i].nodes)) out.push_back({'v', i});
+      if (out.empty()) c_.fail(n, "element_sets", "element set '" + name + "': no element has all its nodes selected");
+    }
+    element_sets_[name] = out;
+  }
+  // A section, material or mass kind given to the elements of a set.
+  void assignment(const YAML::Node& n) {
+    c_.expect_map(n, index_, {"set", "section", "material", "mass"});
+    const std::string name = c_.text(n, "set");
+    const auto it = element_sets_.find(name);
+    if (it == element_sets_.end()) c_.fail(n["set"], "set", "element set '" + name + "' does not exist");
+    const bool section = n["section"].IsDefined(), material = n["material"].IsDefined(), mass = n["mass"].IsDefined();
+    if (!section && !material && !mass) c_.fail(n, "section", "give a section, a material or a mass kind");
+    const std::string s = section ? c_.text(n, "section") : "", mat = material ? c_.text(n, "material") : "";
+    const fe::MassKind kind = mass_kind(n);
+    for (const ElementRef& e : it->second) {
+      if (e.kind == 'b' && section && !m_.beam_sections.count(s))
+        c_.fail(n["section"], "section", "the set holds beams and there is no beam section '" + s + "'");
+      if (e.kind == 's' && section && !m_.shell_sections.count(s))
+        c_.fail(n["section"], "section", "the set holds shells and there is no shell section '" + s + "'");
+      if (e.kind == 'v' && !section && material && !m_.materials.count(mat))
+        c_.fail(n["material"], "material", "material '" + mat + "' does not exist");
+      if (e.kind == 'v' && section) c_.fail(n["section"], "section", "the set holds solids: give them a material");
+      if (e.kind != 'v' && material)
+        c_.fail(n["material"], "material", "the set holds beams or shells: give them a section");
+    }
+    for (const ElementRef& e : it->second) {
+      if (e.kind == 'b') {
+        if (section) m_.beams[e.index].section = s;
+        if (mass) m_.beams[e.index].mass = kind;
+      } else if (e.kind == 's') {
+        if (section) m_.shells[e.index].section = s;
+        if (mass) m_.shells[e.index].mass = kind;
+      } else {
+        if (material) m_.solids[e.index].material = mat;
+        if (mass) m_.solids[e.index].mass = kind;
+      }
+    }
   }
   void point_mass(const YAML::Node& n) {
     c_.expect_map(n, index_, {"id", "node", "at", "mass", "inertia"});
