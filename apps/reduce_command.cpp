@@ -1,7 +1,6 @@
 // rigflex reduce MODEL.yaml --interface SET [--method guyan|craig-bampton]
 //   [--modes N | --cutoff HZ] [--zeta 0.02] [--zeta-modes 1,3] --out DIR:
 // a frame reduced onto its joint DOFs, with damping, checks and exports.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -60,9 +59,9 @@ reduction::FrameReductionOptions to_options(const ReduceArgs& a) {
     std::string rest = spec.substr(colon + 1) + ",";
     for (size_t start = 0, comma; (comma = rest.find(',', start)) != std::string::npos; start = comma + 1) {
       const std::string name = rest.substr(start, comma - start);
-      const auto it = std::find(fe::kDofNames.begin(), fe::kDofNames.end(), name);
-      if (it == fe::kDofNames.end()) fail("'" + name + "' is not one of UX UY UZ RX RY RZ");
-      mask[static_cast<size_t>(it - fe::kDofNames.begin())] = true;
+      const std::optional<int> local = fe::dof_index(name);
+      if (!local) fail("'" + name + "' is not one of UX UY UZ RX RY RZ");
+      mask[static_cast<size_t>(*local)] = true;
     }
     if (!o.node_dofs.emplace(node, mask).second) fail("node " + std::to_string(node) + " is given twice");
   }

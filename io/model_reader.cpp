@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "fe/dof.hpp"
 #include "fe/element_loop.hpp"
@@ -281,10 +282,9 @@ class ModelFileReader {
     fe::DofMask mask{};
     for (const auto& d : v) {
       const std::string s = d.IsScalar() ? d.as<std::string>() : "";
-      bool found = false;
-      for (int k = 0; k < 6; ++k)
-        if (s == fe::dof_name(k)) mask[static_cast<size_t>(k)] = found = true;
-      if (!found) c_.fail(d, key, "unknown DOF '" + s + "' (expected UX UY UZ RX RY RZ)");
+      const std::optional<int> k = fe::dof_index(s);
+      if (!k) c_.fail(d, key, "unknown DOF '" + s + "' (expected UX UY UZ RX RY RZ)");
+      mask[static_cast<size_t>(*k)] = true;
     }
     return mask;
   }
@@ -668,16 +668,15 @@ class ModelFileReader {
     std::vector<ElementRef> out;
     if (n["elements"].IsDefined()) {
       c_.expect_sequence(n["elements"], "elements");
+      std::unordered_map<std::string, std::vector<ElementRef>> by_id;
+      for (size_t i = 0; i < m_.beams.size(); ++i) by_id[m_.beams[i].id].push_back({'b', i});
+      for (size_t i = 0; i < m_.shells.size(); ++i) by_id[m_.shells[i].id].push_back({'s', i});
+      for (size_t i = 0; i < m_.solids.size(); ++i) by_id[m_.solids[i].id].push_back({'v', i});
       for (const auto& v : n["elements"]) {
         if (!v.IsScalar()) c_.fail(v, "elements", "expected element ids");
         const std::string id = v.as<std::string>();
-        std::vector<ElementRef> found;
-        for (size_t i = 0; i < m_.beams.size(); ++i)
-          if (m_.beams[i].id == id) found.push_back({'b', i});
-        for (size_t i = 0; i < m_.shells.size(); ++i)
-          if (m_.shells[i].id == id) found.push_back({'s', i});
-        for (size_t i = 0; i < m_.solids.size(); ++i)
-          if (m_.solids[i].id == id) found.push_back({'v', i});
+        const auto hit = by_id.find(id);
+        const std::vector<ElementRef> found = hit == by_id.end() ? std::vector<ElementRef>{} : hit->second;
         if (found.size() != 1)
           c_.fail(v, "elements",
                   found.empty() ? "no beam, shell or solid '" + id + "'" : "'" + id + "' names elements of two kinds");

@@ -112,10 +112,9 @@ class FrameReader {
     d.node = f_.integer(n, "node");
     const JsonNode name = f_.required(n, "dof");
     const std::string text = f_.text(name);
-    const auto& names = fe::kDofNames;
-    const auto it = std::find(names.begin(), names.end(), text);
-    if (it == names.end()) f_.fail(name, "'" + text + "' is not one of: UX, UY, UZ, RX, RY, RZ");
-    d.local = static_cast<int>(it - names.begin());
+    const std::optional<int> local = fe::dof_index(text);
+    if (!local) f_.fail(name, "'" + text + "' is not one of: UX, UY, UZ, RX, RY, RZ");
+    d.local = *local;
     return d;
   }
 

@@ -123,7 +123,7 @@ std::map<std::string, std::string> abaqus_matrix_files(const reduction::ReducedF
       inp += line;
     }
   }
-  const std::string name = stem;
+  const std::string& name = stem;
   inp += "*MATRIX INPUT, NAME=" + name + "-K, INPUT=" + stem + "_K.txt\n";
   inp += "*MATRIX INPUT, NAME=" + name + "-M, INPUT=" + stem + "_M.txt\n";
   files[stem + "_K.txt"] = abaqus_matrix(r.K, at);
