@@ -21,6 +21,7 @@
 #include "reduction/modal_analysis.hpp"
 #include "support/input_errors.hpp"
 #include "support/temp_files.hpp"
+#include "support/test_support.hpp"
 
 namespace rigflex {
 namespace {
@@ -28,11 +29,7 @@ namespace {
 const std::string kDeckDir = std::string(RIGFLEX_SOURCE_DIR) + "/tests/io/";
 
 Eigen::VectorXd deck_modes(const fe::Model& model) {
-  linalg::EigenOptions o;
-  o.count = 10;
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(model, o);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  return a.result.frequencies_hz();
+  return test::checked_modal_analysis(model, 10).result.frequencies_hz();
 }
 
 // The table frame's parts as a rigflex model; `plate` places the plate.

@@ -11,6 +11,7 @@
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "support/input_errors.hpp"
+#include "support/test_support.hpp"
 
 namespace rigflex {
 namespace {
@@ -25,12 +26,7 @@ supports:
 )";
 
 Eigen::VectorXd plate_modes(const std::string& text) {
-  const io::ModelFile f = io::parse_model(text, "plate.yaml");
-  linalg::EigenOptions o;
-  o.count = 8;
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(f.model, o);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  return a.result.frequencies_hz();
+  return test::checked_modal_analysis(io::parse_model(text, "plate.yaml").model, 8).result.frequencies_hz();
 }
 
 TEST(ElementSets, ABandChosenByABoxTakesItsSection) {

@@ -28,6 +28,7 @@
 #include "io/reduced_solver_formats.hpp"
 #include "reduction/frame_reduction.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "support/test_support.hpp"
 
 namespace rigflex {
 namespace {
@@ -64,13 +65,7 @@ supports:
   - {plane: [[0, 0, 0], [0, 0, 1]], dofs: all}
 )";
 
-Eigen::VectorXd modes10(const fe::Model& m) {
-  linalg::EigenOptions o;
-  o.count = 10;
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m, o);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
-  return a.result.frequencies_hz();
-}
+Eigen::VectorXd modes10(const fe::Model& m) { return test::checked_modal_analysis(m, 10).result.frequencies_hz(); }
 
 void expect_same_modes(const fe::Model& a, const fe::Model& b, double tol) {
   const Eigen::VectorXd fa = modes10(a), fb = modes10(b);

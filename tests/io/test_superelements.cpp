@@ -28,6 +28,7 @@
 #include "reduction/frame_reduction.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "support/temp_files.hpp"
+#include "support/test_support.hpp"
 
 namespace rigflex {
 namespace {
@@ -60,10 +61,7 @@ point_masses:
 )";
 
 Eigen::VectorXd lowest_modes(const fe::Model& model, int count) {
-  linalg::EigenOptions o;
-  o.count = count;
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(model, o);
-  EXPECT_TRUE(a.result.converged) << a.result.message;
+  const reduction::ModalAnalysis a = test::checked_modal_analysis(model, count);
   EXPECT_LT(a.result.residuals.maxCoeff(), 1e-8);
   return a.result.frequencies_hz();
 }
