@@ -228,7 +228,14 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
                    (rss - cost) >= options.min_excess_share * excess && ef.plausible;
   // None when the fit amounts to no effect; with the values' uncertainty,
   // so that the effect, once added, is refitted like any stated value.
-  if (c.make(theta)) ef.rig_block = c.rig_block(theta, standard_deviations(ef.parameters));
+  if (c.make(theta)) {
+    try {
+      ef.rig_block = c.rig_block(theta, standard_deviations(ef.parameters));
+    } catch (const rig::ParameterError& e) {
+      // Never named (implausible), and a file the rig reader refuses is no use.
+      ef.note += std::string(ef.note.empty() ? "" : "; ") + "no effects file: " + e.what();
+    }
+  }
   return ef;
 }
 

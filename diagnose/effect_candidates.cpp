@@ -1,7 +1,9 @@
 #include "diagnose/effect_candidates.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
+#include "rig/effect_ranges.hpp"
 #include "rig/effect_uncertainty.hpp"
 
 namespace rigflex::diagnose {
@@ -30,8 +32,21 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& context) 
   for (const rig::EffectKind& kind : rig::effect_kinds()) {
     rig::EffectFitting f = kind.fit(context);
     auto write = f.write;
-    auto block = [&kind, write](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
+    // The values go through the rig reader's checks (ranges, then the
+    // kind's own): a block it would refuse throws rig::ParameterError
+    // instead of becoming a file that compare --effects cannot read.
+    auto block = [&kind, write, context](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
       rig::ParameterValue v = write(theta);
+      rig::EffectParseContext x;
+      x.key = "effects." + kind.name;
+      x.rods = context.rods;
+      x.geometry = &context.geometry;
+      x.body_mass = context.body_mass;
+      x.read_frame = [key = x.key](bool) -> rig::FrameSource {
+        throw std::logic_error(key + ": diagnose writes a frame by its joint compliance, never by files");
+      };
+      rig::check_ranges(kind, v, rig::range_scales(x));
+      kind.parse(v, x);
       if (std.size() > 0) {
         if (auto u = rig::fitted_uncertainty(kind, write, theta, std)) v.set("uncertainty", std::move(*u));
       }

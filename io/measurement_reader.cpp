@@ -51,6 +51,7 @@ class MeasurementFileReader {
     // Sample k is on line header + 2 + k (1-based): the reader refuses blank lines among the samples.
     h.provenance.first_sample_line = static_cast<int>(header + 2);
     h.sample_rate_hz = rig::nominal_sample_rate(h.t, h.provenance.comments);
+    if (auto w = rate_warning(h)) h.provenance.warnings.push_back(*w);
     return h;
   }
 
@@ -200,6 +201,21 @@ class MeasurementFileReader {
   // sensor clipped at its range (for 0.25 s or more: a swing's turning
   // point, quantized to 17 bits, stays on one count for about 0.05 s), else
   // stuck (for 1 s or more). Doubtful, not wrong - a warning.
+  // A "sample_rate_hz" comment the time stamps contradict (beyond 1 %: a
+  // logger's clock drifts by ppm): the tools go by the stamps, so the
+  // comment is only a sign of a file from another run or a wrong column t.
+  std::optional<std::string> rate_warning(const rig::Record& h) const {
+    const Eigen::Index n = h.t.size();
+    if (n < 2 || h.comment("sample_rate_hz").empty()) return std::nullopt;
+    const double stamps = static_cast<double>(n - 1) / (h.t(n - 1) - h.t(0));
+    if (std::abs(h.sample_rate_hz - stamps) <= 0.01 * stamps) return std::nullopt;
+    char msg[256];
+    std::snprintf(msg, sizeof msg,
+                  "the comment gives sample_rate_hz: %s but the time stamps (column t) %.6g Hz; the stamps are used",
+                  h.comment("sample_rate_hz").c_str(), stamps);
+    return std::string(msg);
+  }
+
   std::vector<std::string> channel_warnings(size_t header, const Layout& layout, const rig::Record& h) const {
     std::vector<std::string> out;
     const Eigen::Index n = h.t.size();

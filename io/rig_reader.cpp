@@ -15,6 +15,7 @@
 #include "reduction/frame_reduction.hpp"
 #include "rig/effect.hpp"
 #include "rig/effect_kinds.hpp"
+#include "rig/effect_ranges.hpp"
 #include "rig/frame_models.hpp"
 #include "rig/rig_spec.hpp"
 
@@ -254,7 +255,9 @@ struct RigFileReader {
     x.read_frame = [&](bool fixed) { return frame(e, x.key, fixed); };
     try {
       rig::ParameterValue tree = parameter_tree(e);
-      uncertainty = rig::take_uncertainty(kind, tree, rods);
+      const rig::RangeScales scales = rig::range_scales(x);
+      uncertainty = rig::take_uncertainty(kind, tree, rods, scales);
+      rig::check_ranges(kind, tree, scales);
       return kind.parse(tree, x);
     } catch (const rig::ParameterError& p) {
       throw InputError(ctx.file(), p.line(), p.key(), p.reason());

@@ -51,7 +51,7 @@ rig::Velocity as_rates(const rig::RigSystem& rig, const Eigen::VectorXd& s) {
 }
 
 void write_grid(const std::filesystem::path& file, const std::vector<Eigen::Vector3d>& points,
-                const std::vector<Eigen::Vector3d>& motion, int n, const rig::RigMode& mode, int index) {
+                const std::vector<Eigen::Vector3d>& motion, int n, const rig::RigMode& mode, int index, double scale) {
   vtkNew<vtkUnstructuredGrid> grid;
   vtkNew<vtkPoints> pts;
   pts->SetDataTypeToDouble();
@@ -74,11 +74,11 @@ void write_grid(const std::filesystem::path& file, const std::vector<Eigen::Vect
   line(P, G, 3);
   grid->GetCellData()->AddArray(part);
   vtkNew<vtkDoubleArray> u;
-  u->SetName("displacement");
+  u->SetName("translation");
   u->SetNumberOfComponents(3);
   for (const auto& d : motion) u->InsertNextTuple3(d.x(), d.y(), d.z());
   grid->GetPointData()->AddArray(u);
-  grid->GetPointData()->SetActiveVectors("displacement");
+  grid->GetPointData()->SetActiveVectors("translation");
   vtkNew<vtkDoubleArray> f;
   f->SetName("frequency_hz");
   f->InsertNextValue(mode.frequency_hz);
@@ -91,6 +91,10 @@ void write_grid(const std::filesystem::path& file, const std::vector<Eigen::Vect
   grid->GetFieldData()->AddArray(f);
   grid->GetFieldData()->AddArray(m);
   grid->GetFieldData()->AddArray(kind);
+  vtkNew<vtkDoubleArray> shown;
+  shown->SetName("display_scale");
+  shown->InsertNextValue(scale);
+  grid->GetFieldData()->AddArray(shown);
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetFileName(file.string().c_str());
   writer->SetInputData(grid);
@@ -104,8 +108,9 @@ void add_rig_mode_files(FileBatch& batch, const std::filesystem::path& dir, cons
                         const rig::Linearization& lin) {
   const rig::Configuration& c = lin.equilibrium.configuration;
   const auto points = skeleton(rig.kinematics(c, rig.at_rest(), 0.0));
-  // Scale each shape so that its largest skeleton displacement is 5 % of the
-  // mean rod length: ParaView's warp then shows every mode at a readable size.
+  // Scale each shape so that its largest skeleton displacement is
+  // kDisplayShare of the mean rod length: ParaView's warp then shows every
+  // mode at a readable size; the factor is kept in `display_scale`.
   double L = 0;
   for (const auto& r : rig.assembly().geometry.rods) L += r.length / rig.rods();
   std::vector<std::string> names;
@@ -115,16 +120,15 @@ void add_rig_mode_files(FileBatch& batch, const std::filesystem::path& dir, cons
     auto motion = skeleton_motion(rig.kinematics(c, as_rates(rig, mode.shape), 0.0));
     double largest = 0;
     for (const auto& d : motion) largest = std::max(largest, d.norm());
-    if (largest > 0) {
-      for (auto& d : motion) d *= 0.05 * L / largest;
-    }
+    const double scale = largest > 0 ? kDisplayShare * L / largest : 1.0;
+    for (auto& d : motion) d *= scale;
     char name[48];
     std::snprintf(name, sizeof name, "rig_mode_%03zu.vtu", k + 1);
     names.emplace_back(name);
     f(static_cast<Eigen::Index>(k)) = mode.frequency_hz;
     const int n = rig.rods(), index = static_cast<int>(k + 1);
-    batch.add(dir / name, [points, motion, n, mode, index](const std::filesystem::path& tmp) {
-      write_grid(tmp, points, motion, n, mode, index);
+    batch.add(dir / name, [points, motion, n, mode, index, scale](const std::filesystem::path& tmp) {
+      write_grid(tmp, points, motion, n, mode, index, scale);
     });
   }
   batch.add_text(dir / "rig_modes.pvd", mode_collection(f, names));

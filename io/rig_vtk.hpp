@@ -1,7 +1,9 @@
 #pragma once
 // The rig's linear modes for ParaView: a skeleton of the rig (upper joints,
-// rods, lower joints, reference point and CoG) with each mode's displacement
-// as point data; one .vtu per mode and DIR/rig_modes.pvd.
+// rods, lower joints, reference point and CoG) with each mode's motion as
+// point data `translation`, scaled for display (the largest kDisplayShare of
+// the mean rod length; the factor in the field `display_scale`, as for the
+// frames' modes in io/vtk_modes.hpp); one .vtu per mode and DIR/rig_modes.pvd.
 #include <filesystem>
 
 #include "io/atomic_file.hpp"

@@ -13,10 +13,12 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "fe/bounding_box.hpp"
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
 
@@ -61,7 +63,22 @@ vtkSmartPointer<vtkUnstructuredGrid> mesh_grid(const fe::Model& model) {
   return grid;
 }
 
+// The model's size for display: its bounding box's largest side (1 for a
+// model of one point).
+double model_extent(const fe::Model& model) {
+  const double d = fe::bounding_box_sides(model).maxCoeff();
+  return d > 0 ? d : 1.0;
+}
+
 }  // namespace
+
+double display_scale(const Eigen::VectorXd& full, double extent) {
+  double largest = 0;  // translation, or rotation times the extent: what a rotation moves the model's far end by
+  for (Eigen::Index b = 0; b + 5 < full.size(); b += 6) {
+    largest = std::max({largest, full.segment<3>(b).norm(), extent * full.segment<3>(b + 3).norm()});
+  }
+  return largest > 0 ? kDisplayShare * extent / largest : 1.0;
+}
 
 std::string mode_collection(const Eigen::VectorXd& f, const std::vector<std::string>& files) {
   std::ostringstream o;
@@ -81,9 +98,11 @@ void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model
     char name[32];
     std::snprintf(name, sizeof name, "mode_%03ld.vtu", static_cast<long>(k + 1));
     names.emplace_back(name);
-    const Eigen::VectorXd full = dofs.expand(vectors.col(k));
     const double f = frequencies_hz(k);
-    batch.add(dir / name, [&model, full, f, k](const fs::path& tmp) {
+    const Eigen::VectorXd normalized = dofs.expand(vectors.col(k));
+    const double scale = display_scale(normalized, model_extent(model));
+    const Eigen::VectorXd full = scale * normalized;
+    batch.add(dir / name, [&model, full, f, k, scale](const fs::path& tmp) {
       auto grid = mesh_grid(model);
       vtkNew<vtkDoubleArray> u, r;
       u->SetName("translation");
@@ -104,8 +123,12 @@ void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model
       vtkNew<vtkIntArray> mode;
       mode->SetName("mode");
       mode->InsertNextValue(static_cast<int>(k + 1));
+      vtkNew<vtkDoubleArray> shown;
+      shown->SetName("display_scale");
+      shown->InsertNextValue(scale);
       grid->GetFieldData()->AddArray(freq);
       grid->GetFieldData()->AddArray(mode);
+      grid->GetFieldData()->AddArray(shown);
       vtkNew<vtkXMLUnstructuredGridWriter> writer;
       writer->SetFileName(tmp.string().c_str());
       writer->SetInputData(grid);

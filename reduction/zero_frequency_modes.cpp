@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "fe/bounding_box.hpp"
 #include "linalg/pencil_scale.hpp"
 
 namespace rigflex::reduction {
@@ -12,13 +13,7 @@ namespace {
 // The diagonal of the model's bounding box: a length that turns a rotation
 // into the displacement it causes across the model.
 double model_size(const fe::Model& model) {
-  if (model.nodes.empty()) return 1.0;
-  Eigen::Vector3d lo = model.nodes.front().x, hi = lo;
-  for (const fe::Node& n : model.nodes) {
-    lo = lo.cwiseMin(n.x);
-    hi = hi.cwiseMax(n.x);
-  }
-  const double d = (hi - lo).norm();
+  const double d = fe::bounding_box_sides(model).norm();
   return d > 0 ? d : 1.0;
 }
 

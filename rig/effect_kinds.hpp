@@ -36,14 +36,25 @@ enum class ParameterShape {
   map,           // a mapping of its own (described in the effect's doc)
 };
 
+// What a parameter's physical range is stated in: absolute units, or a
+// multiple of the rig's own size (rig/effect_ranges.hpp), so that a range
+// that holds for a 200 kg body on 1 m rods also holds for a truck.
+enum class ParameterScale {
+  absolute,
+  rod_length,      // L: the rods' mean length
+  weight_per_rod,  // W: the body's weight over the rods
+  body_mass,       // m: the body's mass
+};
+
 struct ParameterSpec {
   std::string key;
   ParameterShape shape = ParameterShape::number;
   std::string unit;                  // "1" dimensionless; "" for text and maps
-  double low = -INFINITY, high = INFINITY;  // physical range of each number
+  double low = -INFINITY, high = INFINITY;  // physical range of each number, in `scale`
   bool low_open = false;             // (low, ...: low itself excluded
   std::string default_value;         // "" when required or when its absence means something (see doc)
   std::string doc;                   // a few words, for the docs' table
+  ParameterScale scale = ParameterScale::absolute;
 };
 
 // What a rig file's effect is read against.

@@ -120,8 +120,9 @@ EffectKind air_drag() {
   k.equations = "force -1/2 rho CdA norm(v) v on the body at the drag centre and moment -c_rot norm(w) w";
   k.signature = "large swings decay faster";
   k.parameters = {
-      {"density", ParameterShape::number, "kg/m^3", 0, inf, true, "1.2", "air density"},
-      {"cd_area", ParameterShape::number, "m^2", 0, inf, false, "0", "drag coefficient x frontal area (`cd_area` and/or `rotational`)"},
+      {"density", ParameterShape::number, "kg/m^3", 0, 10, true, "1.2", "air density"},
+      {"cd_area", ParameterShape::number, "m^2", 0, 100, false, "0",
+       "drag coefficient x frontal area (`cd_area` and/or `rotational`)"},
       {"rotational", ParameterShape::number, "N m s^2/rad^2", 0, inf, false, "0", "rotational drag"},
       {"centre", ParameterShape::vec3, "m", -inf, inf, false, "the CoG", "drag centre in frame c"},
   };

@@ -69,8 +69,8 @@ EffectKind encoder_offset() {
   k.equations = "each encoder reads its angles plus a constant offset (the identifier subtracts a known one)";
   k.signature = "constant angle shifts";
   k.parameters = {
-      {"alpha", ParameterShape::per_rod, "rad", -inf, inf, false, "", "offset of each alpha encoder"},
-      {"beta", ParameterShape::per_rod, "rad", -inf, inf, false, "", "offset of each beta encoder"},
+      {"alpha", ParameterShape::per_rod, "rad", -0.5, 0.5, false, "", "offset of each alpha encoder"},
+      {"beta", ParameterShape::per_rod, "rad", -0.5, 0.5, false, "", "offset of each beta encoder"},
   };
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     expect_parameters(e, x, "encoder_offset");
@@ -88,8 +88,9 @@ EffectKind load_cell_gain() {
   k.equations = "load cell i reads gain_i F_i + offset_i (the identifier inverts a known one)";
   k.signature = "F' = g F + o";
   k.parameters = {
-      {"gain", ParameterShape::per_rod, "1", 0, inf, true, "1", "gain of each load cell (`gain` and/or `offset`)"},
-      {"offset", ParameterShape::per_rod, "N", -inf, inf, false, "0", "offset of each load cell"},
+      {"gain", ParameterShape::per_rod, "1", 0.5, 2, false, "1", "gain of each load cell (`gain` and/or `offset`)"},
+      {"offset", ParameterShape::per_rod, "N", -1, 1, false, "0", "offset of each load cell",
+       ParameterScale::weight_per_rod},
   };
   k.parse = parse_load_cell_gain;
   k.fitted_through = "every load cell's gain and offset";

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "rig/effect_kind_entries.hpp"
+#include "rig/effect_ranges.hpp"
 #include "rig/effects.hpp"
 
 namespace rigflex::rig::kinds {
@@ -10,16 +11,43 @@ namespace {
 
 using R = ParameterReader;
 
+// A rod that stretches by more than a fifth of its length under its share
+// of the body's weight is a spring, not a rod of a pendulum rig: a wrong
+// entry or a unit slip (N/mm read as N/m, mm^2 as m^2).
+constexpr double kMaxStaticStretch = 0.2;
+
+void require_rod_stiffness(const std::vector<double>& k, const ParameterValue& at, const std::string& key,
+                           const EffectParseContext& x) {
+  const double W = range_scales(x).weight_per_rod;
+  if (!(W > 0) || !x.geometry) return;
+  for (int i = 0; i < x.rods && i < static_cast<int>(k.size()); ++i) {
+    const double L = x.geometry->rods[static_cast<size_t>(i)].length;
+    const double stretch = W / k[static_cast<size_t>(i)];
+    if (stretch > kMaxStaticStretch * L) {
+      R::fail(at, key,
+              "rod " + std::to_string(i + 1) + " of stiffness " + std::to_string(k[static_cast<size_t>(i)]) +
+                  " N/m would stretch " + std::to_string(stretch) + " m under the body's weight (" + std::to_string(W) +
+                  " N per rod), more than a fifth of its length " + std::to_string(L) +
+                  " m: a wrong entry, or another unit?");
+    }
+  }
+}
+
 std::shared_ptr<const Effect> parse_rod_compliance(const ParameterValue& e, const EffectParseContext& x) {
   expect_parameters(e, x, "rod_compliance");
   if (e["stiffness"].defined() == e["area"].defined()) {
     R::fail(e, x.key, "needs either 'stiffness' (N/m per rod) or 'youngs_modulus' and 'area' (EA/L)");
   }
-  if (e["stiffness"].defined()) return std::make_shared<RodCompliance>(R::per_rod(e, "stiffness", x.rods));
+  if (e["stiffness"].defined()) {
+    const auto k = R::per_rod(e, "stiffness", x.rods);
+    require_rod_stiffness(k, e["stiffness"], "stiffness", x);
+    return std::make_shared<RodCompliance>(k);
+  }
   const double E = R::number(e, "youngs_modulus");
   const auto A = R::per_rod(e, "area", x.rods);
   std::vector<double> k;
   for (int i = 0; i < x.rods; ++i) k.push_back(E * A[i] / x.geometry->rods[i].length);
+  require_rod_stiffness(k, e["area"], "area", x);
   return std::make_shared<RodCompliance>(k);
 }
 
@@ -150,7 +178,8 @@ EffectKind rod_mass() {
   k.hook = EffectHook::build;
   k.equations = "m/3 of each rod moves with each joint, m/2 of its weight hangs on each";
   k.signature = "the swing slows";
-  k.parameters = {{"mass", ParameterShape::per_rod, "kg", 0, inf, false, "", "mass of each rod, uniform along it"}};
+  k.parameters = {{"mass", ParameterShape::per_rod, "kg", 0, 1, false, "", "mass of each rod, uniform along it",
+                   ParameterScale::body_mass}};
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     expect_parameters(e, x, "rod_mass");
     return std::make_shared<RodMass>(R::per_rod(e, "mass", x.rods));
@@ -166,7 +195,8 @@ EffectKind rod_length_error() {
   k.hook = EffectHook::build;
   k.equations = "the true rod lengths are the geometry block's plus delta";
   k.signature = "the body hangs lower by delta";
-  k.parameters = {{"delta", ParameterShape::per_rod, "m", -inf, inf, false, "", "length error of each rod"}};
+  k.parameters = {{"delta", ParameterShape::per_rod, "m", -0.2, 0.2, false, "", "length error of each rod",
+                   ParameterScale::rod_length}};
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     expect_parameters(e, x, "rod_length_error");
     return std::make_shared<RodLengthError>(R::per_rod(e, "delta", x.rods));
@@ -183,8 +213,10 @@ EffectKind joint_position_error() {
   k.equations = "the true joint centres are the geometry block's plus the errors (upper in G, lower in c)";
   k.signature = "shifted equilibrium";
   k.parameters = {
-      {"upper", ParameterShape::per_rod_vec3, "m", -inf, inf, false, "0", "error of each upper joint centre"},
-      {"lower", ParameterShape::per_rod_vec3, "m", -inf, inf, false, "0", "error of each lower joint centre"},
+      {"upper", ParameterShape::per_rod_vec3, "m", -0.2, 0.2, false, "0", "error of each upper joint centre",
+       ParameterScale::rod_length},
+      {"lower", ParameterShape::per_rod_vec3, "m", -0.2, 0.2, false, "0", "error of each lower joint centre",
+       ParameterScale::rod_length},
   };
   k.parse = [](const ParameterValue& e, const EffectParseContext& x) -> std::shared_ptr<const Effect> {
     expect_parameters(e, x, "joint_position_error");

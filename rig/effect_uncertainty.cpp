@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rig/effect_kinds.hpp"
+#include "rig/effect_ranges.hpp"
 
 namespace rigflex::rig {
 
@@ -104,7 +105,8 @@ std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
 
 std::string EffectUncertainty::Item::name() const { return rod < 0 ? key : key + "[" + std::to_string(rod) + "]"; }
 
-std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods) {
+std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods,
+                                                  const RangeScales& scales) {
   if (tree.kind != Kind::map) return std::nullopt;
   const auto at = std::find_if(tree.entries.begin(), tree.entries.end(),
                                [](const ParameterEntry& e) { return e.key == "uncertainty"; });
@@ -138,8 +140,8 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
     item.fallback = fallback.value_or(0.0);
     item.key = e.key;
     item.unit = spec->unit;
-    item.low = spec->low;
-    item.high = spec->high;
+    item.low = range_low(*spec, scales);
+    item.high = range_high(*spec, scales);
     item.low_open = spec->low_open;
     if (e.value.kind == Kind::list) {
       if (spec->shape != ParameterShape::per_rod) ParameterReader::fail(e.value, key, "expected a number");

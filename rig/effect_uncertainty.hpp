@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "rig/effect_parameters.hpp"
+#include "rig/range_scales.hpp"
 
 namespace rigflex::rig {
 
@@ -47,8 +48,11 @@ struct EffectUncertainty {
 // Takes `uncertainty` out of an effect's parameter tree (which the effect's
 // own parse then reads without it) and checks it against the kind; none if
 // the tree has none. Throws ParameterError naming the line and key
-// ("uncertainty.mass") relative to the effect.
-std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods);
+// ("uncertainty.mass") relative to the effect. A refitted value is held
+// within the key's physical range for a rig of these `scales`
+// (rig/effect_ranges.hpp; unknown sizes leave the scaled ends open).
+std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, ParameterValue& tree, int rods,
+                                                  const RangeScales& scales = {});
 
 // The `uncertainty` mapping of a fitted effect's rig-file parameters
 // `written` = write(theta) (rig::EffectFitting::write): each number or

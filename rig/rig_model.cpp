@@ -22,6 +22,10 @@ bool finite(const Vec3& v) { return v.allFinite(); }
 // not a tolerance of the lab.
 constexpr double kReachTolerance = 0.05;
 
+// Joint centres closer than this are one (m): joints are centimetres apart
+// at least, and a calibration is good to a millimetre.
+constexpr double kDistinctJoints = 1e-3;
+
 }  // namespace
 
 Eigen::Matrix3d inertia_tensor(const std::array<double, 6>& J) {
@@ -36,6 +40,19 @@ std::array<double, 6> inertia_components(const Eigen::Matrix3d& J) {
 
 void RigModel::validate_input() const {
   validate();
+  // Two rods on one joint centre carry as one: the body hangs from fewer
+  // points than the rig has rods, its yaw and tilt unobservable or
+  // unrestrained - a copied line of the calibration, not a rig.
+  const int n = geometry.rod_count();
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < i; ++j) {
+      const RodGeometry &a = geometry.rods[i], &b = geometry.rods[j];
+      const std::string at = "geometry.rods[" + std::to_string(i + 1) + "]";
+      const std::string other = " as rod " + std::to_string(j + 1) + ": each rod hangs from a joint of its own";
+      require((a.upper - b.upper).norm() >= kDistinctJoints, at + ".upper", "the same upper joint centre" + other);
+      require((a.lower - b.lower).norm() >= kDistinctJoints, at + ".lower", "the same lower joint centre" + other);
+    }
+  }
   // A real body's principal moments obey the triangle inequality. Checked on
   // input only: a fit's trial inertia may cross it by a probe (a thin disk
   // lies on it), and the equations of motion hold for any positive definite

@@ -6,6 +6,8 @@
 # identification by the rigid and the flexible algorithm.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
+# Only what the demo needs: no test suite, benchmarks or test oracles
+# (scripts/test.sh installs and builds those).
+bash scripts/install-deps.sh demo
+bash scripts/build.sh -DRIGFLEX_BUILD_TESTS=OFF -DRIGFLEX_BUILD_BENCH=OFF
 bash scripts/run_demo.sh build/rigflex out

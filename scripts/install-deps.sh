@@ -1,16 +1,32 @@
 #!/usr/bin/env bash
-# Installs rigflex's build and test dependencies from Debian 12 packages.
+# Installs rigflex's dependencies from Debian 12 packages.
+#   install-deps.sh        what the build, the tests and the benchmarks need
+#                          (GoogleTest, Google Benchmark and the tests'
+#                          oracles: CalculiX, SciPy, headless Chromium)
+#   install-deps.sh demo   what building rigflex and running it needs (the
+#                          demo: scripts/demo.sh builds without tests)
 # Idempotent: packages already present are skipped by apt; safe to re-run.
 set -euo pipefail
+
+profile=${1:-all}
+case "$profile" in
+  all|demo) ;;
+  *) echo "install-deps: unknown profile '$profile' (all, demo)" >&2; exit 2 ;;
+esac
 
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread libopenblas-dev
   libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libmatio-dev
-  libgtest-dev libgmock-dev libbenchmark-dev libsundials-dev libboost-dev libfftw3-dev zlib1g-dev
-  calculix-ccx python3-scipy python3-numpy
-  chromium
+  libsundials-dev libboost-dev libfftw3-dev zlib1g-dev
 )
+if [ "$profile" = all ]; then
+  packages+=(
+    libgtest-dev libgmock-dev libbenchmark-dev
+    calculix-ccx python3-scipy python3-numpy
+    chromium
+  )
+fi
 # npm fetches the plotting library of the HTML reports (third_party/js). A
 # node/npm already installed (e.g. from NodeSource) is used as it is: Debian's
 # npm package would conflict with it.

@@ -141,14 +141,18 @@ TEST(CliRig, CheckOfABadRigNamesFileLineAndKeyAndWritesNothing) {
 }
 
 TEST(CliRig, CheckWithoutStaticEquilibriumNamesTheEffect) {
-  // 1 N/m rods would let 100 kg sink 327 m: no equilibrium is found near the rig.
-  const std::string text = kSmallRig + "effects:\n  rod_compliance: {stiffness: 1.0}\n";
+  // Upper joints of 1 m/N would let 100 kg sink 327 m: no equilibrium is
+  // found near the rig. (Rods that soft are refused by their range: a
+  // frame's joint compliance has no upper bound.)
+  const std::string text = kSmallRig +
+                           "effects:\n  fixed_frame_flexibility: {joint_compliance: {joints: [[0, 0, 1.0], [0, 0, "
+                           "1.0], [0, 0, 1.0]]}}\n";
   const RigFile rig(text);
   const fs::path out = rig.dir.path() / "out";
   const CliRun r = run("check " + rig.file.string() + " --quiet --out " + out.string());
   EXPECT_EQ(r.code, 2) << r.out;
-  const std::string where =
-      rig.file.string() + ":" + std::to_string(line_of(text, "rod_compliance")) + ": key 'effects.rod_compliance'";
+  const std::string where = rig.file.string() + ":" + std::to_string(line_of(text, "fixed_frame_flexibility")) +
+                            ": key 'effects.fixed_frame_flexibility'";
   EXPECT_NE(r.out.find(where), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no static equilibrium found"), std::string::npos) << r.out;
   EXPECT_FALSE(fs::exists(out));

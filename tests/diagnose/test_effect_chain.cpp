@@ -122,3 +122,23 @@ TEST(ChainedCandidate, TheAcceptedParametersFirstThenTheNext) {
 }
 
 }  // namespace
+
+namespace {
+
+// A fit beyond the effect's physical range (docs/rig.md) gives no block:
+// the rig reader would refuse the file, so diagnose writes none (and says
+// why in the candidate's note). Inside the range, the block reads back.
+TEST(EffectCandidates, ABlockBeyondThePhysicalRangeIsRefused) {
+  const rig::RigSystem sys(test::noisy_trifilar());  // rods of 1 m
+  const auto all = diagnose::effect_candidates(diagnose::candidate_context(sys, 0.5));
+  const auto& lengths = named(all, "rod_length_error");
+  EXPECT_NO_THROW(lengths.rig_block(Eigen::Vector3d(0.19, 0.0, -0.19), {}));
+  EXPECT_THROW(lengths.rig_block(Eigen::Vector3d(0.0, 0.3, 0.0), {}), rig::ParameterError);
+  const auto& compliance = named(all, "rod_compliance");
+  const double weight_per_rod = sys.suspended_weight() / 3;
+  // A compliance that stretches the rods by 0.1 m under their load is read; 0.5 m is not a rod.
+  EXPECT_NO_THROW(compliance.rig_block(Eigen::VectorXd::Constant(1, 0.1 / weight_per_rod), {}));
+  EXPECT_THROW(compliance.rig_block(Eigen::VectorXd::Constant(1, 0.5 / weight_per_rod), {}), rig::ParameterError);
+}
+
+}  // namespace

@@ -366,9 +366,19 @@ TEST(RigReader, EffectParameterOfTheWrongType) {
   expect_error(bad, "joint_friction", "effects.joint_friction.joints", "both, upper or lower");
 }
 
+// Every number of an effect is held to its physical range, absolute or
+// scaled by the rig (rig/effect_ranges.hpp), at the number's own line.
 TEST(RigReader, EffectParameterOutOfRange) {
-  const std::string bad = std::string(kValidRig) + "  rod_mass:\n    mass: -2.0\n";
-  expect_error(bad, "mass: -2.0", "effects.rod_mass.mass", "must be >= 0");
+  expect_error(std::string(kValidRig) + "  rod_mass:\n    mass: -2.0\n", "mass: -2.0", "effects.rod_mass.mass",
+               "'-2.0' kg is outside the physical range [0, 1 m]");
+  expect_error(std::string(kValidRig) + "  rod_length_error:\n    delta: [0.001, 0.9, 0.0]\n", "delta: [0.001",
+               "effects.rod_length_error.delta", "'0.9' m is outside the physical range [-0.2 L, 0.2 L]");
+  expect_error(std::string(kValidRig) + "  joint_position_error:\n    upper: [[0, 0, 0], [0, 0, 0], [0, 0.58, 0]]\n",
+               "upper: [[0", "effects.joint_position_error.upper", "'0.58' m is outside the physical range");
+  expect_error(replace_first(kValidRig, "alpha: [0.001, 0.002", "alpha: [0.001, 5.0"), "alpha: [0.001, 5.0",
+               "effects.encoder_offset.alpha", "'5.0' rad is outside the physical range [-0.5, 0.5]");
+  expect_error(std::string(kValidRig) + "  rod_compliance: {stiffness: 1.0}\n", "rod_compliance: {stiffness",
+               "effects.rod_compliance.stiffness", "more than a fifth of its length");
 }
 
 // An effect's `uncertainty` states how well the model knows its values:

@@ -4,10 +4,15 @@
 // ends, so ParaView draws the element the model has.
 #include <gtest/gtest.h>
 #include <vtkCell.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "fe/meshers.hpp"
@@ -95,6 +100,67 @@ TEST(VtkModes, EachSolidTypesCellHasTheTypesNodesInVtkOrder) {
       }
     }
   }
+}
+
+// Mode shapes are written scaled for display: `translation` is the shape
+// times the field `display_scale`, its largest motion 5 % of the model's
+// largest extent; a shape that does not move keeps scale 1.
+TEST(VtkModes, ShapesAreScaledForDisplayWithTheFactorKept) {
+  fe::Model m;
+  m.materials["steel"] = fe::Material{"steel", 210e9, 0.3, 7850.0};
+  fe::NodeMerger merger(m);
+  fe::SolidBlockSpec spec;
+  spec.id = "b";
+  spec.corners = {fe::Vec3(0, 0, 0), fe::Vec3(4, 0, 0), fe::Vec3(4, 1, 0), fe::Vec3(0, 1, 0),
+                  fe::Vec3(0, 0, 1), fe::Vec3(4, 0, 1), fe::Vec3(4, 1, 1), fe::Vec3(0, 1, 1)};
+  spec.nx = 4;
+  spec.element = "hex8";
+  spec.material = "steel";
+  fe::mesh_solid_block(m, merger, spec);
+  const fe::AssembledSystem sys = fe::assemble(m);
+  Eigen::VectorXd shape(sys.dofs.free_count());
+  for (Eigen::Index i = 0; i < shape.size(); ++i) shape(i) = 1e-3 * std::sin(0.7 * static_cast<double>(i) + 0.3);
+  Eigen::MatrixXd shapes(shape.size(), 2);
+  shapes << shape, Eigen::VectorXd::Zero(shape.size());
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "vtk_display_scale";
+  std::filesystem::remove_all(dir);
+  FileBatch batch;
+  add_mode_shape_files(batch, dir, m, sys.dofs, Eigen::Vector2d(1.0, 2.0), shapes);
+  batch.commit();
+  const Eigen::VectorXd full = sys.dofs.expand(shape);
+  for (int k : {1, 2}) {
+    vtkNew<vtkXMLUnstructuredGridReader> reader;
+    reader->SetFileName((dir / (k == 1 ? "mode_001.vtu" : "mode_002.vtu")).string().c_str());
+    reader->Update();
+    vtkUnstructuredGrid* grid = reader->GetOutput();
+    vtkDataArray* scale_array = grid->GetFieldData()->GetArray("display_scale");
+    ASSERT_NE(scale_array, nullptr);
+    const double scale = scale_array->GetTuple1(0);
+    vtkDataArray* u = grid->GetPointData()->GetArray("translation");
+    ASSERT_NE(u, nullptr);
+    ASSERT_EQ(u->GetNumberOfTuples(), static_cast<vtkIdType>(m.nodes.size()));
+    if (k == 2) {
+      EXPECT_EQ(scale, 1.0);
+      continue;
+    }
+    double largest = 0;
+    for (vtkIdType i = 0; i < u->GetNumberOfTuples(); ++i) {
+      const double* t = u->GetTuple3(i);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], scale * full(6 * i + c), 1e-15 * scale);
+      largest = std::max(largest, std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]));
+    }
+    EXPECT_NEAR(largest, kDisplayShare * 4.0, 1e-12);  // the block's largest extent is 4 m
+  }
+}
+
+// A rotation counts as the motion it makes at the model's far end.
+TEST(VtkModes, DisplayScaleWeighsRotationsByTheExtent) {
+  Eigen::VectorXd shape = Eigen::VectorXd::Zero(12);
+  shape(3) = 0.1;   // node 1 RX
+  shape(6) = 0.05;  // node 2 UX
+  EXPECT_NEAR(display_scale(shape, 2.0), kDisplayShare * 2.0 / 0.2, 1e-15);
+  EXPECT_NEAR(display_scale(shape, 0.1), kDisplayShare * 0.1 / 0.05, 1e-15);
+  EXPECT_EQ(display_scale(Eigen::VectorXd::Zero(12), 2.0), 1.0);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "rig/effect_kinds.hpp"
+#include "rig/effect_ranges.hpp"
 #include "rig/rig_system.hpp"
 #include "support/effect_actions.hpp"
 #include "support/rig_cases.hpp"
@@ -22,18 +23,6 @@ namespace {
 
 bool numeric(rig::ParameterShape s) {
   return s != rig::ParameterShape::text && s != rig::ParameterShape::map;
-}
-
-std::string number_text(double x) {
-  std::ostringstream s;
-  s << x;
-  return s.str();
-}
-
-std::string range_text(const rig::ParameterSpec& p) {
-  if (!numeric(p.shape) || (std::isinf(p.low) && std::isinf(p.high))) return "";
-  std::string s = std::string(p.low_open ? "(" : "[") + (std::isinf(p.low) ? "-inf" : number_text(p.low)) + ", ";
-  return s + (std::isinf(p.high) ? "inf)" : number_text(p.high) + "]");
 }
 
 std::string shape_text(rig::ParameterShape s) {
@@ -49,7 +38,7 @@ std::string shape_text(rig::ParameterShape s) {
 
 std::string parameter_text(const rig::ParameterSpec& p) {
   std::string s = "`" + p.key + "`";
-  for (const std::string& part : {p.unit == "1" ? std::string() : p.unit, range_text(p), shape_text(p.shape)}) {
+  for (const std::string& part : {p.unit == "1" ? std::string() : p.unit, rig::range_text(p), shape_text(p.shape)}) {
     if (!part.empty()) s += " " + part;
   }
   if (!p.default_value.empty()) s += " (default " + p.default_value + ")";

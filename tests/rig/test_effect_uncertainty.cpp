@@ -67,17 +67,24 @@ TEST(EffectUncertainty, OffsetsGoOnTheirNumbers) {
   EXPECT_DOUBLE_EQ(number(q, "mass", 2), 2.0);
 }
 
-// A fit that asks for less than nothing gets the range's edge: a mass of 0,
-// a gain just above 0 (its range is open there).
+// A fit that asks for less than nothing, or more than the rig allows, gets
+// the range's edge: a mass of 0, a gain of 0.5, a rod mass of the body's
+// mass where the rig's scales are known - and no upper edge where they are
+// not.
 TEST(EffectUncertainty, OffsetsStayWithinThePhysicalRange) {
   V masses = V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(1.0)));
   const auto m = rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), masses, 3);
   EXPECT_EQ(number(rig::with_offsets(*m, Eigen::VectorXd::Constant(1, -5.0)), "mass"), 0.0);
+  EXPECT_EQ(number(rig::with_offsets(*m, Eigen::VectorXd::Constant(1, 50.0)), "mass"), 52.0);
   V gains = V::map().set("gain", V::of(1.0)).set("uncertainty", V::map().set("gain", V::of(0.1)));
   const auto g = rig::take_uncertainty(*rig::find_effect_kind("load_cell_gain"), gains, 3);
-  const double low = number(rig::with_offsets(*g, Eigen::VectorXd::Constant(1, -2.0)), "gain");
-  EXPECT_GT(low, 0.0);
-  EXPECT_LT(low, 1e-6);
+  EXPECT_EQ(number(rig::with_offsets(*g, Eigen::VectorXd::Constant(1, -2.0)), "gain"), 0.5);
+  EXPECT_EQ(number(rig::with_offsets(*g, Eigen::VectorXd::Constant(1, 3.0)), "gain"), 2.0);
+  rig::RangeScales scales;
+  scales.body_mass = 10.0;
+  V bounded = V::map().set("mass", V::of(2.0)).set("uncertainty", V::map().set("mass", V::of(1.0)));
+  const auto b = rig::take_uncertainty(*rig::find_effect_kind("rod_mass"), bounded, 3, scales);
+  EXPECT_EQ(number(rig::with_offsets(*b, Eigen::VectorXd::Constant(1, 50.0)), "mass"), 10.0);
 }
 
 }  // namespace
