@@ -232,7 +232,11 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
     try {
       ef.rig_block = c.rig_block(theta, standard_deviations(ef.parameters));
     } catch (const rig::ParameterError& e) {
-      // Never named (implausible), and a file the rig reader refuses is no use.
+      // Values the rig reader would refuse: beyond physics, so never the
+      // missing effect (a short rod's plausible box can reach past them),
+      // and no file that compare --effects could not read.
+      ef.plausible = false;
+      ef.significant = false;
       ef.note += std::string(ef.note.empty() ? "" : "; ") + "no effects file: " + e.what();
     }
   }

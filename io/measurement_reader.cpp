@@ -197,10 +197,6 @@ class MeasurementFileReader {
           "the rod's swing across its encoder axis, and so the body's motion,");
   }
 
-  // A channel that holds one value for a long stretch: at its extreme a
-  // sensor clipped at its range (for 0.25 s or more: a swing's turning
-  // point, quantized to 17 bits, stays on one count for about 0.05 s), else
-  // stuck (for 1 s or more). Doubtful, not wrong - a warning.
   // A "sample_rate_hz" comment the time stamps contradict (beyond 1 %: a
   // logger's clock drifts by ppm): the tools go by the stamps, so the
   // comment is only a sign of a file from another run or a wrong column t.
@@ -216,6 +212,10 @@ class MeasurementFileReader {
     return std::string(msg);
   }
 
+  // A channel that holds one value for a long stretch: at its extreme a
+  // sensor clipped at its range (for 0.25 s or more: a swing's turning
+  // point, quantized to 17 bits, stays on one count for about 0.05 s), else
+  // stuck (for 1 s or more). Doubtful, not wrong - a warning.
   std::vector<std::string> channel_warnings(size_t header, const Layout& layout, const rig::Record& h) const {
     std::vector<std::string> out;
     const Eigen::Index n = h.t.size();

@@ -1,6 +1,7 @@
 // Effects on the rig's structure (the build hook) other than the frames:
 // the rods' stiffness and mass, and errors of the geometry block.
 #include <algorithm>
+#include <cstdio>
 
 #include "rig/effect_kind_entries.hpp"
 #include "rig/effect_ranges.hpp"
@@ -24,11 +25,12 @@ void require_rod_stiffness(const std::vector<double>& k, const ParameterValue& a
     const double L = x.geometry->rods[static_cast<size_t>(i)].length;
     const double stretch = W / k[static_cast<size_t>(i)];
     if (stretch > kMaxStaticStretch * L) {
-      R::fail(at, key,
-              "rod " + std::to_string(i + 1) + " of stiffness " + std::to_string(k[static_cast<size_t>(i)]) +
-                  " N/m would stretch " + std::to_string(stretch) + " m under the body's weight (" + std::to_string(W) +
-                  " N per rod), more than a fifth of its length " + std::to_string(L) +
-                  " m: a wrong entry, or another unit?");
+      char msg[320];
+      std::snprintf(msg, sizeof msg,
+                    "rod %d of stiffness %g N/m would stretch %g m under the body's weight (%g N per rod), more than "
+                    "a fifth of its length %g m: a wrong entry, or another unit?",
+                    i + 1, k[static_cast<size_t>(i)], stretch, W, L);
+      R::fail(at, key, msg);
     }
   }
 }

@@ -35,7 +35,7 @@ ScaleWords words(ParameterScale scale) {
     case ParameterScale::weight_per_rod:
       return {"W", "the body's weight over the rods"};
     case ParameterScale::body_mass:
-      return {"m", "the body's mass"};
+      return {"m_body", "the body's mass"};
     case ParameterScale::absolute:
       break;
   }
@@ -114,6 +114,7 @@ void check_ranges(const EffectKind& kind, const ParameterValue& tree, const Rang
     if (!is_numeric(spec.shape)) continue;
     const double low = range_low(spec, scales), high = range_high(spec, scales);
     for_each_number(tree[spec.key], [&](const ParameterValue& at, double x) {
+      if (!std::isfinite(x)) ParameterReader::fail(at, spec.key, "expected a finite number");
       const bool below = spec.low_open ? !(x > low) : !(x >= low);
       if (!below && x <= high) return;
       std::string why = "'" + (at.text.empty() ? range_number(x) : at.text) + "'" +

@@ -43,8 +43,9 @@ ParameterValue& entry(ParameterValue& map, const EffectUncertainty::Item& it) {
 }
 
 double within_range(const EffectUncertainty::Item& it, double x) {
-  // An open lower bound (a gain) is kept a millionth of a standard deviation above it.
-  const double low = it.low_open ? it.low + 1e-6 * it.sigma : it.low;
+  // An open lower bound (a density, a stiffness) is kept a millionth of a
+  // standard deviation above it, and never above the upper one.
+  const double low = std::min(it.low_open ? it.low + 1e-6 * it.sigma : it.low, it.high);
   return std::clamp(x, low, it.high);
 }
 

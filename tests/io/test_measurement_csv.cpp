@@ -606,5 +606,22 @@ TEST(TimeHistoryCsv, ALiveRecordHasNoWarning) {
   EXPECT_TRUE(io::parse_record_csv(in, "live.csv").provenance.warnings.empty());
 }
 
+// A sample_rate_hz comment is checked against the time stamps (100 Hz
+// here): within 1 % it agrees (a logger's nominal rate), beyond it is read
+// with a warning; a comment that is no number is left to the stamps.
+TEST(TimeHistoryCsv, ASampleRateCommentTheStampsContradictIsWarned) {
+  const auto warnings = [](const std::string& comment) {
+    std::istringstream in("# sample_rate_hz: " + comment + "\n" + swing_csv([](int, int, double&) {}));
+    return io::parse_record_csv(in, "rate.csv").provenance.warnings;
+  };
+  EXPECT_TRUE(warnings("100").empty());
+  EXPECT_TRUE(warnings("100.9").empty());
+  const auto off = warnings("500");
+  ASSERT_EQ(off.size(), 1u);
+  EXPECT_EQ(off[0], "the comment gives sample_rate_hz: 500 but the time stamps (column t) 100 Hz; the stamps are used");
+  EXPECT_EQ(warnings("101.1").size(), 1u);
+  EXPECT_TRUE(warnings("fast").empty());
+}
+
 }  // namespace
 }  // namespace rigflex

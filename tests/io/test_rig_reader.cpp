@@ -370,7 +370,7 @@ TEST(RigReader, EffectParameterOfTheWrongType) {
 // scaled by the rig (rig/effect_ranges.hpp), at the number's own line.
 TEST(RigReader, EffectParameterOutOfRange) {
   expect_error(std::string(kValidRig) + "  rod_mass:\n    mass: -2.0\n", "mass: -2.0", "effects.rod_mass.mass",
-               "'-2.0' kg is outside the physical range [0, 1 m]");
+               "'-2.0' kg is outside the physical range [0, 1 m_body]");
   expect_error(std::string(kValidRig) + "  rod_length_error:\n    delta: [0.001, 0.9, 0.0]\n", "delta: [0.001",
                "effects.rod_length_error.delta", "'0.9' m is outside the physical range [-0.2 L, 0.2 L]");
   expect_error(std::string(kValidRig) + "  joint_position_error:\n    upper: [[0, 0, 0], [0, 0, 0], [0, 0.58, 0]]\n",
@@ -379,6 +379,8 @@ TEST(RigReader, EffectParameterOutOfRange) {
                "effects.encoder_offset.alpha", "'5.0' rad is outside the physical range [-0.5, 0.5]");
   expect_error(std::string(kValidRig) + "  rod_compliance: {stiffness: 1.0}\n", "rod_compliance: {stiffness",
                "effects.rod_compliance.stiffness", "more than a fifth of its length");
+  expect_error(std::string(kValidRig) + "  joint_position_error: {upper: [[0, 0, 0], [0, .nan, 0], [0, 0, 0]]}\n",
+               "joint_position_error: {upper", "effects.joint_position_error.upper", "expected a finite number");
 }
 
 // An effect's `uncertainty` states how well the model knows its values:

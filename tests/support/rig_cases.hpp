@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "rig/effect_kinds.hpp"
+#include "rig/effect_ranges.hpp"
 #include "rig/linearization.hpp"
 #include "rig/rig_model.hpp"
 
@@ -51,10 +52,13 @@ inline rig::RigModel noisy_trifilar() {
 // to m.effect_uncertainty, the rest parsed by the effect's kind.
 inline void add_effect(rig::RigModel& m, const std::string& name, rig::ParameterValue parameters) {
   const rig::EffectKind& kind = *rig::find_effect_kind(name);
-  if (auto u = rig::take_uncertainty(kind, parameters, m.geometry.rod_count())) {
+  const rig::EffectParseContext x = rig::parse_context(m, name);
+  const rig::RangeScales scales = rig::range_scales(x);
+  if (auto u = rig::take_uncertainty(kind, parameters, m.geometry.rod_count(), scales)) {
     m.effect_uncertainty.push_back(std::move(*u));
   }
-  m.effects.push_back(kind.parse(parameters, rig::parse_context(m, name)));
+  rig::check_ranges(kind, parameters, scales);
+  m.effects.push_back(kind.parse(parameters, x));
 }
 
 // The swing mode in which coordinate j (of s) moves most, by kinetic energy share.
