@@ -1,7 +1,6 @@
 #include "diagnose/effect_candidates.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 #include "rig/effect_ranges.hpp"
 #include "rig/effect_uncertainty.hpp"
@@ -37,14 +36,7 @@ std::vector<EffectCandidate> effect_candidates(const CandidateContext& context) 
     // instead of becoming a file that compare --effects cannot read.
     auto block = [&kind, write, context](const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
       rig::ParameterValue v = write(theta);
-      rig::EffectParseContext x;
-      x.key = "effects." + kind.name;
-      x.rods = context.rods;
-      x.geometry = &context.geometry;
-      x.body_mass = context.body_mass;
-      x.read_frame = [key = x.key](bool) -> rig::FrameSource {
-        throw std::logic_error(key + ": diagnose writes a frame by its joint compliance, never by files");
-      };
+      const rig::EffectParseContext x = rig::parse_context(context.geometry, context.body_mass, kind.name);
       rig::check_ranges(kind, v, rig::range_scales(x));
       kind.parse(v, x);
       if (std.size() > 0) {

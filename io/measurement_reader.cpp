@@ -203,7 +203,7 @@ class MeasurementFileReader {
   std::optional<std::string> rate_warning(const rig::Record& h) const {
     const Eigen::Index n = h.t.size();
     if (n < 2 || h.comment("sample_rate_hz").empty()) return std::nullopt;
-    const double stamps = static_cast<double>(n - 1) / (h.t(n - 1) - h.t(0));
+    const double stamps = rig::nominal_sample_rate(h.t, {});
     if (std::abs(h.sample_rate_hz - stamps) <= 0.01 * stamps) return std::nullopt;
     char msg[256];
     std::snprintf(msg, sizeof msg,

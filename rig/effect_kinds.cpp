@@ -32,11 +32,15 @@ const EffectKind* find_effect_kind(const std::string& name) {
 }
 
 EffectParseContext parse_context(const RigModel& model, const std::string& name) {
+  return parse_context(model.geometry, model.body.mass, name);
+}
+
+EffectParseContext parse_context(const RigGeometry& geometry, double body_mass, const std::string& name) {
   EffectParseContext x;
   x.key = "effects." + name;
-  x.rods = model.geometry.rod_count();
-  x.geometry = &model.geometry;
-  x.body_mass = model.body.mass;
+  x.rods = geometry.rod_count();
+  x.geometry = &geometry;
+  x.body_mass = body_mass;
   x.read_frame = [key = x.key](bool) -> FrameSource {
     throw std::logic_error(key + ": a frame's files are read by the rig file's reader, not here");
   };

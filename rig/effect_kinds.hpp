@@ -126,6 +126,9 @@ struct EffectKind {
 // throws std::logic_error). For diagnose's refits of an effect the model
 // has (rig/effect_uncertainty.hpp) and the catalogue's tests.
 EffectParseContext parse_context(const RigModel& model, const std::string& name);
+// The same for a rig of this geometry and body mass (diagnose's candidates,
+// which hold the assembled geometry); `geometry` must outlive the context.
+EffectParseContext parse_context(const RigGeometry& geometry, double body_mass, const std::string& name);
 
 // The catalogue in the spec's order.
 const std::vector<EffectKind>& effect_kinds();
