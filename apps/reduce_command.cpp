@@ -1,5 +1,5 @@
 // rigflex reduce MODEL.yaml --interface SET [--method guyan|craig-bampton]
-//   [--modes N | --cutoff HZ] [--zeta 0.02] [--zeta-modes 1,3] --out DIR:
+//   [--modes N | --cutoff HZ] [--dofs all|translations] [--zeta 0.02] [--zeta-modes 1,3] --out DIR:
 // a frame reduced onto its joint DOFs, with damping, checks and exports.
 #include <cstdio>
 #include <filesystem>
@@ -24,7 +24,7 @@ struct ReduceArgs {
   std::string method = "guyan";
   std::optional<int> modes;
   std::optional<double> cutoff_hz;
-  std::string dofs = "translations";
+  std::string dofs = "all";            // six per node: what Simscape and most solvers take
   std::vector<std::string> node_dofs;  // "NODE:UX,UY,UZ,RZ"
   std::string support;  // empty: from the model
   std::optional<long> reference_node;
@@ -97,6 +97,12 @@ void print_summary(const reduction::ReducedFrame& r) {
   std::printf("rigid-body modes: full %d, reduced %d", c.rigid_body_modes_full, c.rigid_body_modes_reduced);
   if (r.support == reduction::FrameSupport::free) std::printf(", residual ||K_r r|| %.2e", c.rigid_body_residual);
   std::printf("\n");
+  const auto& ss = r.state_space;
+  std::printf("state space: %ld states, %s coordinates", static_cast<long>(ss.A.rows()), to_string(ss.coordinates));
+  if (ss.coordinates == reduction::StateCoordinates::modal)
+    std::printf(" (z = T xi), the %d rigid-body modes exact: %d eigenvalues of A exactly zero", ss.rigid_body_modes,
+                2 * ss.rigid_body_modes);
+  std::printf("\n");
   const auto& mf = c.mass_full;
   const auto& mr = c.mass_reduced;
   std::printf("mass: full %.6g kg, CoG (%.6g, %.6g, %.6g) m\n", mf.mass, mf.cog.x(), mf.cog.y(), mf.cog.z());
@@ -143,7 +149,8 @@ int run(const ReduceArgs& args) {
   io::FileBatch batch;
   io::add_reduced_frame_files(batch, args.out, r);
   folder.commit(batch);
-  std::printf("wrote %s/reduced.json, reduced.mat, K.mtx, M.mtx, C.mtx and ss_A..ss_D.mtx\n", args.out.c_str());
+  std::printf("wrote %s/reduced.json, reduced.mat, K.mtx, M.mtx, C.mtx and ss_A..ss_D.mtx, ss_T.mtx\n",
+              args.out.c_str());
   return 0;
 }
 
@@ -160,7 +167,9 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
       cmd->add_option("--modes", a->modes, "Craig-Bampton: number of fixed-interface modes")->check(non_negative());
   cmd->add_option("--cutoff", a->cutoff_hz, "Craig-Bampton: keep the fixed-interface modes below this frequency [Hz]")
       ->excludes(modes);
-  cmd->add_option("--dofs", a->dofs, "retained DOFs per interface node: translations | all")
+  cmd->add_option("--dofs", a->dofs,
+                  "retained DOFs per interface node: all (six, the default: what Simscape's Reduced Order Flexible "
+                  "Solid takes) | translations")
       ->check(CLI::IsMember({"translations", "all"}));
   cmd->add_option("--node-dofs", a->node_dofs,
                   "NODE:UX,UY,UZ,RZ - the DOFs retained at that interface node instead of --dofs (repeatable; "

@@ -1,13 +1,14 @@
-#include "rig/skew.hpp"
 #include "identify/identification.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 #include "identify/mass_statistics.hpp"
+#include "rig/skew.hpp"
 
 namespace rigflex::identify {
 namespace {
@@ -251,9 +252,18 @@ IdentificationResult solve_mass_properties(const std::vector<EquationSample>& sa
   if (!res.unobservable.empty()) {
     std::string list;
     for (const auto& n : res.unobservable) list += (list.empty() ? "" : ", ") + n;
-    res.message = "the records do not excite the unknowns enough: " + list +
-                  " not observable (condition number " + std::to_string(res.condition_number) +
-                  "); record longer or larger swings, or impose the CoG from the static procedure";
+    // The test weighs each direction's spread s / sigma_i: a small sigma
+    // (little excitation) or a large s (a model that does not fit) fails
+    // it alike, so the message names both and gives the residual's size.
+    const double b_norm = eq.b.norm();
+    const double misfit = b_norm > 0 ? 100.0 * sol.resid.norm() / b_norm : 0.0;
+    char residual[64];
+    std::snprintf(residual, sizeof residual, "%.3g %%", misfit);
+    res.message = "the records do not excite the unknowns enough: " + list + " not observable (condition number " +
+                  std::to_string(res.condition_number) + ", equation residual " + residual +
+                  " of the equations' size); record longer or larger swings, or impose the CoG from the static "
+                  "procedure - or, if that residual is large, the model does not fit the records: an effect the "
+                  "records hold and the rig file lacks (or the reverse); compare and diagnose show which";
     return res;
   }
   res.observable = true;

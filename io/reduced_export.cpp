@@ -100,6 +100,11 @@ void check_structure(const ReducedFrame& r) {
 
   const Eigen::Index m = r.interface_dof_count();
   const Eigen::Index n = m + r.mode_count;
+  const auto& ss = r.state_space;
+  const bool modal = ss.coordinates == reduction::StateCoordinates::modal;
+  if (ss.rigid_body_modes < 0 || ss.rigid_body_modes > n || (!modal && ss.rigid_body_modes != 0))
+    refuse_export("state space with " + std::to_string(ss.rigid_body_modes) + " rigid-body modes in " +
+                  to_string(ss.coordinates) + " coordinates");
   const std::string why = std::to_string(m) + " interface DOFs + " + std::to_string(r.mode_count) + " modes";
   for (const auto& f : layout::kMatrixFiles) {
     const Eigen::MatrixXd& A = layout::matrix(r, f.key);
@@ -196,7 +201,11 @@ nlohmann::ordered_json reduced_frame_json(const ReducedFrame& r) {
                   {"omega", {damping.omega[0], damping.omega[1]}},
                   {"alpha", damping.alpha},
                   {"beta", damping.beta}};
-  j["state_space"] = {{"states", 2 * n}, {"inputs", m}, {"outputs", 2 * m}};
+  j["state_space"] = {{"states", 2 * n},
+                      {"inputs", m},
+                      {"outputs", 2 * m},
+                      {"coordinates", to_string(r.state_space.coordinates)},
+                      {"rigid_body_modes", r.state_space.rigid_body_modes}};
   j["checks"] = checks_json(r.checks);
   j["files"] = files;
   return j;

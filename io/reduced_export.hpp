@@ -4,6 +4,7 @@
 //   reduced.json                          everything but the matrices, and the list of files
 //   K.mtx M.mtx C.mtx                     reduced stiffness, mass, damping (Matrix Market)
 //   ss_A.mtx ss_B.mtx ss_C.mtx ss_D.mtx   the state-space form
+//   ss_T.mtx                              its coordinates: z = T xi, x = [xi; xi']
 //   reduced.mat                           the same for MATLAB / Simscape (io/reduced_mat.hpp)
 // Every double reads back bit for bit: the matrices carry 17 significant
 // digits, JSON numbers are written as the shortest decimal that reads back
@@ -19,7 +20,9 @@
 namespace rigflex::io {
 
 inline constexpr const char* kReducedFrameFormat = "rigflex-reduced-frame";
-inline constexpr int kReducedFrameVersion = 1;
+// Version 2 added the state space's coordinates (ss_T.mtx, state_space.coordinates
+// and rigid_body_modes); version 1 folders are still read (physical coordinates).
+inline constexpr int kReducedFrameVersion = 2;
 
 // Throws std::invalid_argument naming the field when `r` cannot be exported
 // as it is: matrix sizes that contradict the interface DOFs and mode count,

@@ -62,21 +62,22 @@ class FrameReader {
     r.full_free_dofs = f_.integer(full);
     if (r.full_free_dofs < 0) f_.fail(full, "must not be negative");
     r.damping = damping(f_.required(root, "damping"));
-    read_state_space_sizes(f_.required(root, "state_space"), n, m);
+    read_state_space(f_.required(root, "state_space"), n, m, r);
     r.checks = checks(f_.required(root, "checks"));
     read_matrices(f_.required(root, "files"), r, n, m);
     return r;
   }
 
  private:
-  void read_format(const JsonNode& root) const {
+  void read_format(const JsonNode& root) {
     if (!root.value->is_object()) f_.fail(root, std::string("expected an object, found ") + root.value->type_name());
     const JsonNode format = f_.required(root, "format");
     if (f_.text(format) != kReducedFrameFormat)
       f_.fail(format, std::string("expected '") + kReducedFrameFormat + "'");
     const JsonNode version = f_.required(root, "version");
-    if (f_.integer(version) != kReducedFrameVersion)
-      f_.fail(version, "version " + version.value->dump() + " is not read by this rigflex (it reads version " +
+    version_ = f_.integer(version);
+    if (version_ < 1 || version_ > kReducedFrameVersion)
+      f_.fail(version, "version " + version.value->dump() + " is not read by this rigflex (it reads versions 1 to " +
                            std::to_string(kReducedFrameVersion) + ")");
   }
 
@@ -167,8 +168,22 @@ class FrameReader {
     return d;
   }
 
-  void read_state_space_sizes(const JsonNode& n, Eigen::Index coordinates, Eigen::Index interface_dofs) const {
-    f_.expect_object(n, {"states", "inputs", "outputs"});
+  // Sizes, and the coordinates of the state (version 1: always physical).
+  void read_state_space(const JsonNode& n, Eigen::Index coordinates, Eigen::Index interface_dofs,
+                        ReducedFrame& r) const {
+    if (version_ == 1) {
+      f_.expect_object(n, {"states", "inputs", "outputs"});
+    } else {
+      f_.expect_object(n, {"states", "inputs", "outputs", "coordinates", "rigid_body_modes"});
+      auto& ss = r.state_space;
+      ss.coordinates = choice(f_.required(n, "coordinates"), reduction::parse_state_coordinates, "physical, modal");
+      const JsonNode rigid = f_.required(n, "rigid_body_modes");
+      ss.rigid_body_modes = small_integer(rigid);
+      const bool modal = ss.coordinates == reduction::StateCoordinates::modal;
+      if (ss.rigid_body_modes < 0 || ss.rigid_body_modes > coordinates)
+        f_.fail(rigid, "expected 0 to " + std::to_string(coordinates) + " (the reduced coordinates)");
+      if (!modal && ss.rigid_body_modes != 0) f_.fail(rigid, "must be 0 with physical coordinates");
+    }
     const std::pair<const char*, Eigen::Index> sizes[] = {
         {"states", 2 * coordinates}, {"inputs", interface_dofs}, {"outputs", 2 * interface_dofs}};
     for (const auto& [key, expected] : sizes) {
@@ -243,11 +258,17 @@ class FrameReader {
   }
 
   void read_matrices(const JsonNode& files, ReducedFrame& r, Eigen::Index n, Eigen::Index m) const {
-    f_.expect_object(files, {"K", "M", "C", "ss_A", "ss_B", "ss_C", "ss_D", layout::kMatKey});
+    const bool has_t = version_ > 1;
+    if (has_t)
+      f_.expect_object(files, {"K", "M", "C", "ss_A", "ss_B", "ss_C", "ss_D", "ss_T", layout::kMatKey});
+    else
+      f_.expect_object(files, {"K", "M", "C", "ss_A", "ss_B", "ss_C", "ss_D", layout::kMatKey});
     file_name(files, layout::kMatKey);
     const std::string origin = std::to_string(m) + " interface DOFs + " + std::to_string(n - m) + " modes in " +
                                layout::kJsonFile;
+    if (!has_t) r.state_space.T = Eigen::MatrixXd::Identity(n, n);
     for (const auto& mf : layout::kMatrixFiles) {
+      if (!has_t && std::string_view(mf.key) == "ss_T") continue;
       const auto size = layout::matrix_size(mf.key, n, m);
       layout::matrix(r, mf.key) = read_matrix_market(dir_ / file_name(files, mf.key), MatrixShape{size.rows, size.cols, origin});
     }
@@ -255,6 +276,7 @@ class FrameReader {
 
   fs::path dir_;
   JsonFields f_;
+  long version_ = kReducedFrameVersion;
 };
 
 }  // namespace

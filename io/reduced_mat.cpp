@@ -60,6 +60,7 @@ void write_to(const fs::path& file, const ReducedMatVariables& v) {
   put(mat.get(), "B", v.B, file);
   put(mat.get(), "Css", v.Css, file);
   put(mat.get(), "D", v.D, file);
+  put(mat.get(), "T", v.T, file);
   put(mat.get(), "interface_nodes", v.interface_nodes, file);
   put(mat.get(), "interface_coordinates", v.interface_coordinates, file);
   put(mat.get(), "dof_node", v.dof_node, file);
@@ -143,6 +144,11 @@ class MatReader {
     return A.reshaped();
   }
 
+  bool has(const char* name) const {
+    MatVar var(Mat_VarReadInfo(mat_.get(), name));
+    return var != nullptr;
+  }
+
   double scalar(const char* name) const {
     const Eigen::MatrixXd A = matrix(name);
     if (A.rows() != 1 || A.cols() != 1) fail(name, "expected a scalar, found " + size_text(A.rows(), A.cols()));
@@ -176,6 +182,7 @@ ReducedMatVariables reduced_mat_variables(const reduction::ReducedFrame& r) {
   v.B = r.state_space.B;
   v.Css = r.state_space.C;
   v.D = r.state_space.D;
+  v.T = r.state_space.T;
   const auto k = static_cast<Eigen::Index>(r.interface_nodes.size());
   v.interface_nodes.resize(k);
   v.interface_coordinates.resize(k, 3);
@@ -249,6 +256,12 @@ ReducedMatVariables read_reduced_mat(const fs::path& file) {
   in.require_size("Css", v.Css, 2 * m, 2 * n, from_nm);
   v.D = in.matrix("D");
   in.require_size("D", v.D, 2 * m, m, from_nm);
+  if (in.has("T")) {
+    v.T = in.matrix("T");
+    in.require_size("T", v.T, n, n, from_k);
+  } else {
+    v.T = Eigen::MatrixXd::Identity(n, n);
+  }
   v.alpha = in.scalar("alpha");
   v.beta = in.scalar("beta");
   return v;

@@ -6,6 +6,8 @@
 //   K M C                  n x n, n = m interface DOFs + N modal coordinates
 //   A B Css D              the state space; Css is its output matrix (C is
 //                          the damping matrix)
+//   T                      n x n, its coordinates: z = T xi, x = [xi; xi']
+//                          (the identity for physical coordinates)
 //   interface_nodes        k x 1 node ids, in the interface set's order
 //   interface_coordinates  k x 3, m
 //   dof_node dof_index     m x 1: node id and 1..6 (UX UY UZ RX RY RZ) of
@@ -21,7 +23,7 @@
 namespace rigflex::io {
 
 struct ReducedMatVariables {
-  Eigen::MatrixXd K, M, C, A, B, Css, D;
+  Eigen::MatrixXd K, M, C, A, B, Css, D, T;
   Eigen::VectorXd interface_nodes;
   Eigen::MatrixXd interface_coordinates;
   Eigen::VectorXd dof_node, dof_index;
@@ -42,6 +44,7 @@ void add_reduced_mat_file(FileBatch& batch, const std::filesystem::path& file, c
 // Throws InputError naming the file and the variable: not a MAT file, a
 // variable missing or not a real double matrix, sizes that contradict each
 // other, a dof_index outside 1..6 or a dof_node that is not an interface node.
+// A file without T (rigflex before the state space's coordinates) reads T = I.
 ReducedMatVariables read_reduced_mat(const std::filesystem::path& file);
 
 }  // namespace rigflex::io

@@ -258,7 +258,7 @@ void add_damping(const FullModes& full, const FrameReductionOptions& o, const Ei
   r.damping = rayleigh_coefficients(o.zeta_modes, omega, {o.zeta, o.zeta});
   const bool floating_free = r.support == FrameSupport::free;
   r.C = rayleigh_damping_matrix(r.K, r.M, r.damping, floating_free ? rigid : Eigen::MatrixXd());
-  r.state_space = state_space_form(r.K, r.M, r.C, r.interface_dof_count());
+  r.state_space = state_space_form(r.K, r.M, r.C, r.interface_dof_count(), floating_free ? rigid : Eigen::MatrixXd());
 }
 
 // The reduction against the full model: frequencies and MAC, damping

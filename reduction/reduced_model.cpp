@@ -34,4 +34,12 @@ std::optional<InterfaceDofs> parse_interface_dofs(const std::string& s) {
   return std::nullopt;
 }
 
+const char* to_string(StateCoordinates c) { return c == StateCoordinates::physical ? "physical" : "modal"; }
+
+std::optional<StateCoordinates> parse_state_coordinates(const std::string& s) {
+  if (s == "physical") return StateCoordinates::physical;
+  if (s == "modal") return StateCoordinates::modal;
+  return std::nullopt;
+}
+
 }  // namespace rigflex::reduction

@@ -65,12 +65,24 @@ struct RayleighDamping {
   double beta = 0.0;                      // s
 };
 
-// x' = A x + B u, y = C x + D u, with x = [z; z'] (z the reduced
-// coordinates), u the forces (moments) at the interface DOFs and
+// The coordinates xi of a state x = [xi; xi'].
+enum class StateCoordinates {
+  physical,  // xi = z, the reduced coordinates (T = I)
+  modal,     // z = T xi, T the M-orthonormal modes, the rigid-body ones first
+};
+
+// x' = A x + B u, y = C x + D u, with x = [xi; xi'] and z = T xi (z the
+// reduced coordinates), u the forces (moments) at the interface DOFs and
 // y = [interface displacements; interface velocities].
 struct StateSpace {
   Eigen::MatrixXd A, B, C, D;
+  Eigen::MatrixXd T;  // n x n
+  StateCoordinates coordinates = StateCoordinates::physical;
+  int rigid_body_modes = 0;  // modal: the leading coordinates whose A block is exactly [0 I; 0 0]
 };
+
+const char* to_string(StateCoordinates c);  // "physical", "modal"
+std::optional<StateCoordinates> parse_state_coordinates(const std::string& s);
 
 struct FrequencyCheck {
   int mode = 0;             // 1-based mode of the full model

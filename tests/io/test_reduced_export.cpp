@@ -77,6 +77,9 @@ ReducedFrame awkward_frame() {
   r.state_space.B = a.matrix(2 * n, m);
   r.state_space.C = a.matrix(2 * m, 2 * n);
   r.state_space.D = a.matrix(2 * m, m);
+  r.state_space.T = a.matrix(n, n);
+  r.state_space.coordinates = reduction::StateCoordinates::modal;
+  r.state_space.rigid_body_modes = 6;
   r.damping = {{2, 5}, {0.02, 1.0 / 3}, {a.next(), a.next()}, a.next(), -0.0};
   for (int k = 1; k <= 4; ++k) {
     reduction::FrequencyCheck f{k, a.next(), a.next(), a.next(), a.next()};
@@ -113,7 +116,7 @@ ReducedFrame plain_frame() {
   r.K = a.matrix(6, 6);
   r.M = a.matrix(6, 6);
   r.C = a.matrix(6, 6);
-  r.state_space = {a.matrix(12, 12), a.matrix(12, 6), a.matrix(12, 12), a.matrix(12, 6)};
+  r.state_space = {a.matrix(12, 12), a.matrix(12, 6), a.matrix(12, 12), a.matrix(12, 6), a.matrix(6, 6)};
   r.full_free_dofs = 600;
   return r;
 }
@@ -176,6 +179,9 @@ void expect_same(const ReducedFrame& a, const ReducedFrame& b) {
   expect_same(a.state_space.B, b.state_space.B, "state_space.B");
   expect_same(a.state_space.C, b.state_space.C, "state_space.C");
   expect_same(a.state_space.D, b.state_space.D, "state_space.D");
+  expect_same(a.state_space.T, b.state_space.T, "state_space.T");
+  EXPECT_EQ(a.state_space.coordinates, b.state_space.coordinates);
+  EXPECT_EQ(a.state_space.rigid_body_modes, b.state_space.rigid_body_modes);
   const auto& ca = a.checks;
   const auto& cb = b.checks;
   ASSERT_EQ(ca.frequencies.size(), cb.frequencies.size());
@@ -202,8 +208,8 @@ void expect_same(const ReducedFrame& a, const ReducedFrame& b) {
   EXPECT_EQ(a.full_free_dofs, b.full_free_dofs);
 }
 
-const std::set<std::string> kExportFiles = {"reduced.json", "reduced.mat", "K.mtx",    "M.mtx",   "C.mtx",
-                                            "ss_A.mtx",     "ss_B.mtx",    "ss_C.mtx", "ss_D.mtx"};
+const std::set<std::string> kExportFiles = {"reduced.json", "reduced.mat", "K.mtx",    "M.mtx",    "C.mtx",
+                                            "ss_A.mtx",     "ss_B.mtx",    "ss_C.mtx", "ss_D.mtx", "ss_T.mtx"};
 
 // ---------------------------------------------------------------- Matrix Market
 
@@ -384,7 +390,7 @@ TEST(ReducedExport, JsonHoldsTheDocumentedRecords) {
   io::write_reduced_frame(dir.path(), r);
   const auto j = nlohmann::json::parse(read_text(dir.path() / "reduced.json"));
   EXPECT_EQ(j["format"], "rigflex-reduced-frame");
-  EXPECT_EQ(j["version"], 1);
+  EXPECT_EQ(j["version"], 2);
   EXPECT_EQ(j["method"], "craig-bampton");
   EXPECT_EQ(j["support"], "reference-node");
   EXPECT_EQ(j["retained_dofs"], "all");
@@ -392,7 +398,9 @@ TEST(ReducedExport, JsonHoldsTheDocumentedRecords) {
   EXPECT_EQ(j["dof_order"][0], (nlohmann::json{{"node", 7}, {"dof", "UX"}}));
   EXPECT_EQ(j["dof_order"][17], (nlohmann::json{{"node", -4}, {"dof", "RZ"}}));
   EXPECT_EQ(j["coordinate_count"], 21);
-  EXPECT_EQ(j["state_space"], (nlohmann::json{{"states", 42}, {"inputs", 18}, {"outputs", 36}}));
+  EXPECT_EQ(j["state_space"],
+            (nlohmann::json{
+                {"states", 42}, {"inputs", 18}, {"outputs", 36}, {"coordinates", "modal"}, {"rigid_body_modes", 6}}));
   const auto& full = j["checks"]["mass_properties"]["full"];
   EXPECT_EQ(full["inertia"].size(), 6u);
   EXPECT_EQ(full["inertia"][3].get<double>(), r.checks.mass_full.inertia(0, 1));  // Jxy
@@ -417,6 +425,7 @@ TEST(ReducedExport, MatFileReadsBackBitExact) {
   expect_same(r.state_space.B, v.B, "B");
   expect_same(r.state_space.C, v.Css, "Css");
   expect_same(r.state_space.D, v.D, "D");
+  expect_same(r.state_space.T, v.T, "T");
   ASSERT_EQ(v.interface_nodes.size(), 3);
   ASSERT_EQ(v.interface_coordinates.rows(), 3);
   ASSERT_EQ(v.interface_coordinates.cols(), 3);
@@ -571,7 +580,7 @@ TEST_F(ReducedImport, MissingKeyNamesFileLineAndKey) {
   const auto e = error_with_json(json_with([](auto& j) { j["checks"]["rigid_body_modes"].erase("residual"); }));
   EXPECT_EQ(e.file(), json_path().string());
   EXPECT_EQ(e.key(), "checks.rigid_body_modes.residual");
-  EXPECT_EQ(e.line(), line_of(json_, "\"rigid_body_modes\""));
+  EXPECT_EQ(e.line(), line_of(json_, "\"rigid_body_modes\": {"));  // the checks one, not the state space's count
   EXPECT_EQ(error_with_json(json_with([](auto& j) { j.erase("mode_count"); })).key(), "mode_count");
 }
 
@@ -586,10 +595,16 @@ TEST_F(ReducedImport, WrongValuesNameTheirLine) {
       {[](auto& j) { j["method"] = "gyan"; }, "method", "\"gyan\"", "craig-bampton"},
       {[](auto& j) { j["format"] = "something-else"; }, "format", "something-else", "rigflex-reduced-frame"},
       {[](auto& j) {
-         j["version"] = 2;
-         j["new_in_version_2"] = true;
+         j["version"] = 3;
+         j["new_in_version_3"] = true;
        },
-       "version", "\"version\": 2", "version 2"},
+       "version", "\"version\": 3", "version 3"},
+      {[](auto& j) { j["state_space"]["coordinates"] = "polar"; }, "state_space.coordinates", "\"polar\"",
+       "physical, modal"},
+      {[](auto& j) { j["state_space"]["rigid_body_modes"] = 22; }, "state_space.rigid_body_modes",
+       "\"rigid_body_modes\": 22", "expected 0 to 21"},
+      {[](auto& j) { j["state_space"]["coordinates"] = "physical"; }, "state_space.rigid_body_modes",
+       "\"rigid_body_modes\": 6", "must be 0 with physical"},
       {[](auto& j) { j["dof_order"][3]["node"] = 99; }, "dof_order[3].node", "\"node\": 99", "not in interface_nodes"},
       {[](auto& j) { j["dof_order"][3]["dof"] = "UW"; }, "dof_order[3].dof", "\"UW\"", "UX, UY"},
       {[](auto& j) { j["checks"]["damping_ratios"][2] = nullptr; }, "checks.damping_ratios[2]", "null", "null"},
@@ -614,6 +629,27 @@ TEST_F(ReducedImport, WrongValuesNameTheirLine) {
     else EXPECT_EQ(e.line(), line_of(text, c.needle)) << e.what();
     EXPECT_NE(std::string(e.what()).find(c.words), std::string::npos) << e.what();
   }
+}
+
+// A folder written before the state space named its coordinates (version
+// 1: no ss_T.mtx, no state_space.coordinates) reads as physical, T = I.
+TEST_F(ReducedImport, VersionOneFolderReadsWithPhysicalCoordinates) {
+  write_text(json_path(), json_with([](auto& j) {
+               j["version"] = 1;
+               j["state_space"].erase("coordinates");
+               j["state_space"].erase("rigid_body_modes");
+               j["files"].erase("ss_T");
+             }));
+  fs::remove(dir_.path() / "ss_T.mtx");
+  const ReducedFrame r = io::read_reduced_frame(dir_.path());
+  EXPECT_EQ(r.state_space.coordinates, reduction::StateCoordinates::physical);
+  EXPECT_EQ(r.state_space.rigid_body_modes, 0);
+  EXPECT_EQ(r.state_space.T, Eigen::MatrixXd::Identity(21, 21));
+  expect_same(awkward_frame().state_space.A, r.state_space.A, "state_space.A");
+  // A version 1 file with the version 2 keys is not a version 1 file.
+  const auto e = error_with_json(json_with([](auto& j) { j["version"] = 1; }));
+  EXPECT_EQ(e.key(), "state_space.coordinates") << e.what();
+  EXPECT_NE(std::string(e.what()).find("unknown key"), std::string::npos) << e.what();
 }
 
 TEST_F(ReducedImport, MalformedJsonNamesTheLine) {

@@ -6,11 +6,13 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 
 #include "fe/assembly.hpp"
 #include "fe/error.hpp"
 #include "reduction/frame_reduction.hpp"
 #include "reduction/rayleigh_damping.hpp"
+#include "reduction/state_space.hpp"
 #include "support/frame_models.hpp"
 
 namespace rigflex {
@@ -195,6 +197,86 @@ TEST(FrameReduction, StateSpacePolesAreTheDampedModes) {
   const Eigen::MatrixXd G = r.K.llt().solve(Eigen::MatrixXd::Identity(n, n)).topLeftCorner(nb, nb);
   EXPECT_LE((gain.topRows(nb) - G).cwiseAbs().maxCoeff() / G.cwiseAbs().maxCoeff(), 1e-9);
   EXPECT_LE(gain.bottomRows(nb).cwiseAbs().maxCoeff(), 1e-9 * G.cwiseAbs().maxCoeff());
+}
+
+// The transfer function C (sI - A)^-1 B + D at s = i w.
+Eigen::MatrixXcd transfer(const reduction::StateSpace& s, double w) {
+  const Eigen::Index n = s.A.rows();
+  const Eigen::MatrixXcd sI = std::complex<double>(0, w) * Eigen::MatrixXcd::Identity(n, n);
+  const Eigen::MatrixXcd G =
+      s.C.cast<std::complex<double>>() *
+      (sI - s.A.cast<std::complex<double>>()).partialPivLu().solve(s.B.cast<std::complex<double>>());
+  return G + s.D.cast<std::complex<double>>();
+}
+
+TEST(FrameReduction, FreeFrameStateSpaceIsModalWithExactRigidBodyModes) {
+  const fe::Model m = test::rig_carrying_frame();
+  FrameReductionOptions o = options("lower_joints");
+  o.method = ReductionMethod::craig_bampton;
+  o.modes = 12;
+  o.retained = reduction::InterfaceDofs::all;
+  const ReducedFrame r = reduction::reduce_frame(m, o);
+  const auto& s = r.state_space;
+  const Eigen::Index n = r.K.rows(), nb = r.interface_dof_count();
+  ASSERT_EQ(nb, 18);
+  ASSERT_EQ(s.coordinates, reduction::StateCoordinates::modal);
+  ASSERT_EQ(s.rigid_body_modes, 6);
+  ASSERT_EQ(s.T.rows(), n);
+  ASSERT_EQ(s.T.cols(), n);
+  // T holds M-orthonormal modes: T' M T = I, T' K T = diag(0, w^2) to round-off.
+  const Eigen::MatrixXd TMT = s.T.transpose() * r.M * s.T;
+  EXPECT_LE((TMT - Eigen::MatrixXd::Identity(n, n)).cwiseAbs().maxCoeff(), 1e-10);
+  const Eigen::MatrixXd TKT = s.T.transpose() * r.K * s.T;
+  const double w2max = std::pow(2 * M_PI * r.checks.reduced_frequencies_hz.maxCoeff(), 2);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double expected = i == j ? -s.A(n + i, i) : 0.0;
+      EXPECT_NEAR(TKT(i, j), expected, 1e-10 * w2max) << i << ", " << j;
+    }
+  // The rigid-body block is exactly [0 I; 0 0]: the rigid coordinates' and
+  // velocities' columns hold nothing but that identity, the velocities' rows
+  // are zero, so A has exactly 12 zero eigenvalues (a permutation makes it
+  // block triangular).
+  for (Eigen::Index k = 0; k < 6; ++k) {
+    for (Eigen::Index j = 0; j < 2 * n; ++j) {
+      EXPECT_EQ(s.A(j, k), 0.0) << "A(" << j << ", " << k << ")";
+      EXPECT_EQ(s.A(j, n + k), j == k ? 1.0 : 0.0) << "A(" << j << ", " << n + k << ")";
+      EXPECT_EQ(s.A(n + k, j), 0.0) << "A(" << n + k << ", " << j << ")";
+    }
+  }
+  // Elastic poles: -zeta w +- i w sqrt(1 - zeta^2) at the reduced modes.
+  // (Eigen's solver does not balance, so it splits the exact zeros' Jordan
+  // blocks into a tiny pair at its own round-off: far below the elastic modes.)
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(s.A);
+  const double w_elastic = 2 * M_PI * r.checks.reduced_frequencies_hz(6);
+  std::vector<double> imag;
+  for (Eigen::Index k = 0; k < es.eigenvalues().size(); ++k)
+    if (es.eigenvalues()(k).imag() > 1e-3 * w_elastic) imag.push_back(es.eigenvalues()(k).imag());
+  std::sort(imag.begin(), imag.end());
+  ASSERT_EQ(static_cast<Eigen::Index>(imag.size()), n - 6);
+  for (Eigen::Index k = 6; k < n; ++k) {
+    const double w = 2 * M_PI * r.checks.reduced_frequencies_hz(k);
+    const double z = r.checks.damping_ratios(k);
+    EXPECT_NEAR(imag[static_cast<size_t>(k - 6)] / (w * std::sqrt(1 - z * z)), 1.0, 1e-9) << k;
+  }
+  // Inputs and outputs mean what they meant: the physical form (x = [z; z'])
+  // has the same transfer function. Checked between zero and the first
+  // elastic mode and between modes, where neither form is near a pole; the
+  // two differ by K's round-off on the rigid motions (residual above).
+  const reduction::StateSpace physical = reduction::state_space_form(r.K, r.M, r.C, nb);
+  EXPECT_EQ(physical.coordinates, reduction::StateCoordinates::physical);
+  const double f1 = r.checks.reduced_frequencies_hz(6), f2 = r.checks.reduced_frequencies_hz(7);
+  for (const double f : {0.3 * f1, 0.5 * (f1 + f2)}) {
+    const Eigen::MatrixXcd a = transfer(s, 2 * M_PI * f), b = transfer(physical, 2 * M_PI * f);
+    EXPECT_LE((a - b).cwiseAbs().maxCoeff() / b.cwiseAbs().maxCoeff(), 1e-8) << f << " Hz";
+  }
+}
+
+TEST(FrameReduction, HeldFrameStateSpaceIsPhysical) {
+  const ReducedFrame r = reduction::reduce_frame(test::rig_fixed_frame(3), options("upper_joints"));
+  EXPECT_EQ(r.state_space.coordinates, reduction::StateCoordinates::physical);
+  EXPECT_EQ(r.state_space.rigid_body_modes, 0);
+  EXPECT_EQ(r.state_space.T, Eigen::MatrixXd::Identity(r.K.rows(), r.K.rows()));
 }
 
 TEST(FrameReduction, ReferenceNodeHoldsTheFloatingFrame) {
