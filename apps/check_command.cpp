@@ -3,7 +3,7 @@
 // highest swing frequency, the verdict, where the strain energy sits and how
 // much stiffer the dominant component must be, and the rigid algorithm's
 // predicted error on a short virtual measurement. Writes DIR/check.json and the
-// rig's modes for ParaView (DIR/rig_modes.pvd).
+// rig's modes and its assembly for ParaView (DIR/rig_modes.pvd, DIR/rig_assembly.vtu).
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -15,6 +15,7 @@
 #include "io/atomic_file.hpp"
 #include "io/integration_error.hpp"
 #include "io/output_folder.hpp"
+#include "io/rig_assembly_vtk.hpp"
 #include "io/rig_reader.hpp"
 #include "io/rig_vtk.hpp"
 #include "report/check_json.hpp"
@@ -88,7 +89,8 @@ int run(const CheckArgs& a) {
   std::optional<io::OutputFolder> folder;
   if (!a.out.empty()) folder.emplace(a.out, "check");
   const io::RigReadOptions ro = frame_reduction_options("check", a.quiet);
-  const rig::RigModel model = io::resolve_rig(io::read_rig_spec(a.rig), ro);
+  const rig::RigSpec spec = io::read_rig_spec(a.rig);
+  const rig::RigModel model = io::resolve_rig(spec, ro);
   const rig::CheckResult r = [&] {
     try {
       return rig::design_check(model);
@@ -126,8 +128,11 @@ int run(const CheckArgs& a) {
     batch.add_text(out / "check.json", report::check_json(model, r, prediction, conclusion).dump(2) + "\n");
     const rig::RigSystem rig(model);
     io::add_rig_mode_files(batch, out, rig, r.linearization);
+    io::add_rig_assembly_file(batch, out / "rig_assembly.vtu", rig, r.linearization.equilibrium.configuration,
+                              io::assembly_frames(spec));
     folder->commit(batch);
-    std::printf("wrote %s/check.json and rig_modes.pvd (%zu modes)\n", a.out.c_str(), r.linearization.modes.size());
+    std::printf("wrote %s/check.json, rig_modes.pvd (%zu modes) and rig_assembly.vtu (frames, rods and body at rest)\n",
+                a.out.c_str(), r.linearization.modes.size());
   }
   return 0;
 }

@@ -19,8 +19,7 @@
 #include <stdexcept>
 
 #include "fe/bounding_box.hpp"
-#include "fe/shell_types.hpp"
-#include "fe/solid_types.hpp"
+#include "io/vtk_mesh.hpp"
 
 namespace rigflex::io {
 namespace fs = std::filesystem;
@@ -31,34 +30,10 @@ vtkSmartPointer<vtkUnstructuredGrid> mesh_grid(const fe::Model& model) {
   auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  for (const fe::Node& n : model.nodes) points->InsertNextPoint(n.x.x(), n.x.y(), n.x.z());
   grid->SetPoints(points);
-  auto idx = [&](fe::NodeId id) { return static_cast<vtkIdType>(model.node_index(id)); };
   vtkNew<vtkIntArray> kind;  // 1 beam, 2 shell, 3 point mass, 4 solid: lets ParaView threshold by element kind
   kind->SetName("element_kind");
-  for (const fe::BeamElement& b : model.beams) {
-    const vtkIdType ids[2] = {idx(b.nodes[0]), idx(b.nodes[1])};
-    grid->InsertNextCell(VTK_LINE, 2, ids);
-    kind->InsertNextValue(1);
-  }
-  for (const fe::ShellElement& s : model.shells) {
-    std::vector<vtkIdType> ids;
-    for (fe::NodeId id : s.nodes) ids.push_back(idx(id));
-    // The type's VTK cell takes our node order (tests/io check its point count).
-    grid->InsertNextCell(fe::shell_type(s).vtk_cell, static_cast<vtkIdType>(ids.size()), ids.data());
-    kind->InsertNextValue(2);
-  }
-  for (const fe::SolidElement& s : model.solids) {
-    std::vector<vtkIdType> ids;
-    for (fe::NodeId id : s.nodes) ids.push_back(idx(id));
-    grid->InsertNextCell(fe::solid_type(s).vtk_cell, static_cast<vtkIdType>(ids.size()), ids.data());
-    kind->InsertNextValue(4);
-  }
-  for (const fe::PointMass& p : model.point_masses) {
-    const vtkIdType id = idx(p.node);
-    grid->InsertNextCell(VTK_VERTEX, 1, &id);
-    kind->InsertNextValue(3);
-  }
+  append_mesh(*grid, *kind, model, [](const Eigen::Vector3d& x) { return x; });
   grid->GetCellData()->AddArray(kind);
   return grid;
 }
