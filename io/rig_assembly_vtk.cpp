@@ -9,7 +9,6 @@
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -82,20 +81,23 @@ class AssemblyGrid {
   vtkNew<vtkIntArray> component_, kind_;
 };
 
-void add_frame(AssemblyGrid& g, const std::optional<AssemblyFrame>& frame,
+// Draws the frame; true when, having neither mesh nor interface nodes, it
+// is drawn through its joints.
+bool add_frame(AssemblyGrid& g, const std::optional<AssemblyFrame>& frame,
                const std::function<Vec3(const Vec3&)>& place, const std::vector<Vec3>& joints, int component) {
   if (frame && frame->mesh) {
     g.mesh(
         *frame->mesh, [&](const Vec3& x) { return place(x + frame->offset); }, component);
-    return;
+    return false;
   }
-  std::vector<Vec3> corners;
   if (frame && !frame->interface_nodes.empty()) {
+    std::vector<Vec3> corners;
     for (const Vec3& x : frame->interface_nodes) corners.push_back(place(x + frame->offset));
-  } else {
-    corners = joints;
+    g.outline(corners, component);
+    return false;
   }
-  g.outline(corners, component);
+  g.outline(joints, component);
+  return true;
 }
 
 void add_body_box(AssemblyGrid& g, const fe::MassProperties& body, const rig::Kinematics& k) {
@@ -164,8 +166,7 @@ void add_rig_assembly_file(FileBatch& batch, const std::filesystem::path& file, 
       g, frames.fixed, [](const Vec3& x) { return x; }, upper, kFixedFrame);
   for (size_t i = 0; i < upper.size(); ++i) g.cell(VTK_LINE, {g.point(upper[i]), g.point(lower[i])}, kRods, kRodCell);
   const auto in_g = [&](const Vec3& x_c) -> Vec3 { return k.r + k.R * x_c; };
-  add_frame(g, frames.carrying, in_g, lower, kCarryingFrame);
-  if (!frames.carrying || (!frames.carrying->mesh && frames.carrying->interface_nodes.empty())) {
+  if (add_frame(g, frames.carrying, in_g, lower, kCarryingFrame)) {
     const vtkIdType p = g.point(k.r);
     for (const Vec3& b : lower) g.cell(VTK_LINE, {p, g.point(b)}, kCarryingFrame, kOutlineCell);
   }
@@ -186,13 +187,7 @@ void add_rig_assembly_file(FileBatch& batch, const std::filesystem::path& file, 
     g.grid().GetFieldData()->AddArray(a);
   }
   vtkSmartPointer<vtkUnstructuredGrid> grid = g.finish();
-  batch.add(file, [grid](const std::filesystem::path& tmp) {
-    vtkNew<vtkXMLUnstructuredGridWriter> writer;
-    writer->SetFileName(tmp.string().c_str());
-    writer->SetInputData(grid);
-    writer->SetDataModeToAscii();
-    if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + tmp.string());
-  });
+  batch.add(file, [grid](const std::filesystem::path& tmp) { write_vtu(grid, tmp, VtuEncoding::ascii); });
 }
 
 }  // namespace rigflex::io

@@ -10,11 +10,10 @@
 #include <vtkPoints.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cstdio>
-#include <stdexcept>
 
+#include "io/vtk_mesh.hpp"
 #include "io/vtk_modes.hpp"
 
 namespace rigflex::io {
@@ -95,11 +94,7 @@ void write_grid(const std::filesystem::path& file, const std::vector<Eigen::Vect
   shown->SetName("display_scale");
   shown->InsertNextValue(scale);
   grid->GetFieldData()->AddArray(shown);
-  vtkNew<vtkXMLUnstructuredGridWriter> writer;
-  writer->SetFileName(file.string().c_str());
-  writer->SetInputData(grid);
-  writer->SetDataModeToAscii();
-  if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + file.string());
+  write_vtu(grid, file, VtuEncoding::ascii);
 }
 
 }  // namespace

@@ -1,8 +1,11 @@
 #include "io/vtk_mesh.hpp"
 
 #include <vtkCellType.h>
+#include <vtkNew.h>
 #include <vtkPoints.h>
+#include <vtkXMLUnstructuredGridWriter.h>
 
+#include <stdexcept>
 #include <vector>
 
 #include "fe/shell_types.hpp"
@@ -44,6 +47,18 @@ vtkIdType append_mesh(vtkUnstructuredGrid& grid, vtkIntArray& kind, const fe::Mo
     kind.InsertNextValue(kPointMassCell);
   }
   return grid.GetNumberOfCells() - cells;
+}
+
+void write_vtu(vtkUnstructuredGrid* grid, const std::filesystem::path& file, VtuEncoding encoding) {
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(file.string().c_str());
+  writer->SetInputData(grid);
+  if (encoding == VtuEncoding::ascii) {
+    writer->SetDataModeToAscii();
+  } else {
+    writer->SetDataModeToAppended();
+  }
+  if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + file.string());
 }
 
 }  // namespace rigflex::io

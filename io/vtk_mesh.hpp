@@ -5,6 +5,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <functional>
 
 #include "fe/model.hpp"
@@ -19,5 +20,12 @@ enum ElementKind : int { kBeamCell = 1, kShellCell = 2, kPointMassCell = 3, kSol
 // `grid` must already hold a vtkPoints. Returns the cells added.
 vtkIdType append_mesh(vtkUnstructuredGrid& grid, vtkIntArray& kind, const fe::Model& model,
                       const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& place);
+
+// How a .vtu holds its arrays: readable text, or one raw appended block.
+enum class VtuEncoding { ascii, appended };
+
+// Writes `grid` as a VTK XML unstructured grid; std::runtime_error naming
+// `file` when VTK cannot.
+void write_vtu(vtkUnstructuredGrid* grid, const std::filesystem::path& file, VtuEncoding encoding);
 
 }  // namespace rigflex::io

@@ -11,12 +11,10 @@
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <sstream>
-#include <stdexcept>
 
 #include "fe/bounding_box.hpp"
 #include "io/vtk_mesh.hpp"
@@ -104,11 +102,7 @@ void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model
       grid->GetFieldData()->AddArray(freq);
       grid->GetFieldData()->AddArray(mode);
       grid->GetFieldData()->AddArray(shown);
-      vtkNew<vtkXMLUnstructuredGridWriter> writer;
-      writer->SetFileName(tmp.string().c_str());
-      writer->SetInputData(grid);
-      writer->SetDataModeToAppended();
-      if (writer->Write() != 1) throw std::runtime_error("VTK could not write " + tmp.string());
+      write_vtu(grid, tmp, VtuEncoding::appended);
     });
   }
   batch.add_text(dir / "modes.pvd", mode_collection(frequencies_hz, names));

@@ -19,16 +19,20 @@ struct CliRun {
   std::string out;
 };
 
-inline CliRun run(const std::string& args) {
-  const std::string cmd = std::string(RIGFLEX_CLI) + " " + args + " 2>&1";
+// Runs a shell command line; its exit code and its output (both streams if
+// the line says 2>&1).
+inline CliRun run_command(const std::string& cmd) {
   CliRun r;
   FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return {-1, "popen could not start: " + cmd};
   char buf[4096];
   while (size_t n = fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline CliRun run(const std::string& args) { return run_command(std::string(RIGFLEX_CLI) + " " + args + " 2>&1"); }
 
 inline nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);

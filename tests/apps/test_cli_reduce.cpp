@@ -91,12 +91,9 @@ TEST(CliReduce, MatFileRebuildsTheSimscapeBlockInputsInScipy) {
   const std::string script = std::string(RIGFLEX_SOURCE_DIR) + "/tests/apps/simscape_inputs.py";
   // Debian's interpreter, which has python3-scipy (a python3 first on PATH may not).
   const std::string cmd = "/usr/bin/python3 " + script + " " + (out / "reduced.mat").string() + " 2>&1";
-  std::string text;
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, p)) text.append(buf, n);
-  ASSERT_EQ(pclose(p), 0) << text;
+  const CliRun py = run_command(cmd);
+  ASSERT_EQ(py.code, 0) << py.out;
+  const std::string& text = py.out;
   const auto j = nlohmann::json::parse(text);
   EXPECT_EQ(j["frames"], 3);
   EXPECT_EQ(j["modes"], 12);
