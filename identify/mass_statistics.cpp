@@ -1,6 +1,7 @@
 #include "identify/mass_statistics.hpp"
 
 #include <algorithm>
+#include <boost/math/distributions/beta.hpp>
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 #include <cmath>
@@ -197,6 +198,20 @@ std::vector<NormalProbabilityPoint> normal_probability(std::vector<double> value
     points.push_back({values[i], p, boost::math::quantile(standard, p)});
   }
   return points;
+}
+
+std::vector<OrderStatisticBand> normal_order_statistic_band(std::size_t n, double sigmas) {
+  require(sigmas > 0 && std::isfinite(sigmas), "normal_order_statistic_band: sigmas must be positive");
+  const boost::math::normal_distribution<double> standard;
+  const double tail = boost::math::cdf(standard, -sigmas);  // each side
+  std::vector<OrderStatisticBand> band;
+  band.reserve(n);
+  for (std::size_t i = 1; i <= n; ++i) {
+    const boost::math::beta_distribution<double> rank(static_cast<double>(i), static_cast<double>(n + 1 - i));
+    band.push_back({boost::math::quantile(standard, boost::math::quantile(rank, tail)),
+                    boost::math::quantile(standard, boost::math::quantile(rank, 1.0 - tail))});
+  }
+  return band;
 }
 
 }  // namespace rigflex::identify

@@ -80,4 +80,17 @@ struct NormalProbabilityPoint {
 };
 std::vector<NormalProbabilityPoint> normal_probability(std::vector<double> values);
 
+// Where the i-th smallest of n normal values lies with the probability of
+// +-`sigmas` standard deviations of a normal variable (2: 95.45 %), in
+// standard-normal quantiles: the i-th order statistic of n uniforms is
+// Beta(i, n + 1 - i), so its central interval maps through Phi^-1. On a
+// normal probability plot the band around the line m + s z holds each point
+// of a normal sample with that probability; a point outside it is an
+// outlier or the sample is not normal. Throws std::invalid_argument for
+// sigmas <= 0.
+struct OrderStatisticBand {
+  double lower = 0, upper = 0;  // standard-normal quantiles
+};
+std::vector<OrderStatisticBand> normal_order_statistic_band(std::size_t n, double sigmas);
+
 }  // namespace rigflex::identify

@@ -63,7 +63,11 @@ constexpr std::string_view kRenderJs = R"js(
       ctx.textBaseline = 'bottom';
       markers.forEach(function (m) {
         var px = scale.getPixelForValue(m.x);
-        if (!isFinite(px) || px < area.left - 0.5 || px > area.right + 0.5) return;
+        if (!isFinite(px) || px < area.left - 0.5 || px > area.right + 0.5) {
+          // The axis is made to reach every marker (reachMarkers): one off it is a fault.
+          console.error('marker "' + m.label + '" at x = ' + m.x + ' lies off the x axis');
+          return;
+        }
         ctx.strokeStyle = 'rgba(60, 60, 60, 0.8)';
         ctx.setLineDash([5, 4]);
         ctx.beginPath();
@@ -98,12 +102,27 @@ constexpr std::string_view kRenderJs = R"js(
     return a;
   }
 
+  // The x axis reaches every marker: a marker is a reference the data is
+  // read against, so it is drawn on the axis even where no point lies near it.
+  function reachMarkers(x, markers, log) {
+    var xs = (markers || []).map(function (m) { return m.x; }).filter(isFinite);
+    if (!xs.length) return;
+    var lo = Math.min.apply(null, xs), hi = Math.max.apply(null, xs);
+    var pad = log ? 0 : 0.02 * (hi - lo || Math.abs(hi) || 1);
+    x.suggestedMin = log ? lo / 1.05 : lo - pad;
+    x.suggestedMax = log ? hi * 1.05 : hi + pad;
+  }
+
   function config(p) {
     var bar = p.kind === 'bar';
+    // A line series without a label continues the one before it (a band's
+    // second edge): its colour, no legend entry of its own.
+    var slot = [], next = 0;
+    p.series.forEach(function (s, i) { slot.push(!bar && i > 0 && !s.label ? slot[i - 1] : next++); });
     var datasets = p.series.map(function (s, i) {
-      var color = palette[i % palette.length];
+      var color = palette[slot[i] % palette.length];
       // Past the palette, lines repeat its colours dashed.
-      var dash = s.dash.length || bar || i < palette.length ? s.dash : [6, 3];
+      var dash = s.dash.length || bar || slot[i] < palette.length ? s.dash : [6, 3];
       var d = { label: s.label, borderColor: color, backgroundColor: bar ? color + 'cc' : color,
                 borderWidth: bar ? 1 : 1.5, borderDash: dash };
       if (bar) {
@@ -117,6 +136,8 @@ constexpr std::string_view kRenderJs = R"js(
       return d;
     });
     var legend = p.series.length > 1 || p.series.some(function (s) { return s.label; });
+    var x = axis(bar ? 'category' : (p.log_x ? 'logarithmic' : 'linear'), p.x_label, p.kind === 'line');
+    if (!bar) reachMarkers(x, p.markers, p.log_x);
     return {
       type: bar ? 'bar' : (p.kind === 'scatter' ? 'scatter' : 'line'),
       data: bar ? { labels: p.categories, datasets: datasets } : { datasets: datasets },
@@ -126,11 +147,11 @@ constexpr std::string_view kRenderJs = R"js(
         maintainAspectRatio: false,
         interaction: { mode: 'nearest', intersect: false },
         scales: {
-          x: axis(bar ? 'category' : (p.log_x ? 'logarithmic' : 'linear'), p.x_label, p.kind === 'line'),
+          x: x,
           y: axis(p.log_y ? 'logarithmic' : 'linear', p.y_label, false)
         },
         plugins: {
-          legend: { display: legend },
+          legend: { display: legend, labels: { filter: function (item) { return !!item.text; } } },
           rigflexMarkers: { markers: p.markers }
         }
       },
@@ -168,7 +189,8 @@ constexpr std::string_view kRenderJs = R"js(
     try {
       var canvas = document.getElementById('plot-' + i);
       new Chart(canvas, config(p));
-      if (drawn(canvas, hasData(p))) rendered++;
+      // A chart counts as drawn only with data in it (a frame of axes is not a chart).
+      if (hasData(p) && drawn(canvas, true)) rendered++;
       else blank.push(i + 1);
     } catch (e) {
       console.error('plot ' + (i + 1) + ': ' + (e && e.stack ? e.stack : e));

@@ -210,6 +210,18 @@ void probability_series(Plot& p, const std::string& label, std::vector<double> d
   if (!(s > 0)) return;
   const double lo = pts.x.front(), hi = pts.x.back();
   p.series.push_back({"normal line", {lo, hi}, {(lo - m) / s, (hi - m) / s}, false, kDash});
+  // Where each ranked point of a normal sample of this size lies with 2-sigma
+  // probability: the line alone cannot say whether a point is far from it.
+  PlotSeries below{"2σ band", {}, {}, false, kDot}, above{"", {}, {}, false, kDot};
+  const auto band = identify::normal_order_statistic_band(pts.y.size(), 2.0);
+  for (std::size_t i = 0; i < band.size(); ++i) {
+    below.x.push_back(m + s * band[i].lower);
+    above.x.push_back(m + s * band[i].upper);
+    below.y.push_back(pts.y[i]);
+    above.y.push_back(pts.y[i]);
+  }
+  p.series.push_back(below);
+  p.series.push_back(above);
 }
 
 // One algorithm's plot; none when no set has a finite height.
@@ -238,7 +250,8 @@ void normal_probability_section(HtmlReport& r, const IdentificationReport& rep) 
   r.paragraph("Per set the identified zG minus the " + what +
               ", against the standard-normal quantile of its rank (Blom positions). Points along the dashed line "
               "(mean and standard deviation of the sets): the set-to-set scatter is normal; the line's offset "
-              "from 0 is the bias.");
+              "from 0 is the bias. The dotted band holds each ranked set of a normal sample this size with 2σ "
+              "(95.45 %) probability: a set outside it is an outlier, or the scatter is not normal.");
   const int before = r.plot_count();
   for (const auto& a : rep.algorithms) normal_probability_plot(r, rep, a);
   if (r.plot_count() == before) r.paragraph("No set has a finite CoG height.");

@@ -17,6 +17,7 @@ namespace rigflex::report::text {
 
 inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline const std::vector<double> kDash{6, 3};
+inline const std::vector<double> kDot{2, 3};
 
 // ---------------------------------------------------------------- text
 std::string fmt(const char* format, double v);  // "–" when not finite

@@ -3,11 +3,15 @@
 // distribution for 1 and 2 degrees of freedom.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "identify/mass_statistics.hpp"
 
@@ -347,4 +351,47 @@ TEST(MassStatisticsNormalProbability, EmptyAndErrorCases) {
   EXPECT_NEAR(one[0].quantile, 0.0, 1e-15);
   EXPECT_THROW(normal_probability({1.0, std::numeric_limits<double>::quiet_NaN()}), std::invalid_argument);
   EXPECT_THROW(normal_probability({std::numeric_limits<double>::infinity()}), std::invalid_argument);
+}
+
+TEST(MassStatisticsNormalProbability, OrderStatisticBandClosedFormsAndCoverage) {
+  // The smallest of n uniforms has CDF 1 - (1 - x)^n, the largest x^n, the middle one of three
+  // 3x^2 - 2x^3: each band edge, mapped back through Phi (written with std::erfc), lies at the
+  // two-sided 2-sigma tail t = Phi(-2) of its rank's distribution.
+  const double t = 0.5 * std::erfc(2.0 / std::numbers::sqrt2);
+  auto Phi = [](double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); };
+  for (const std::size_t n : {1u, 2u, 5u, 12u}) {
+    const std::vector<OrderStatisticBand> band = normal_order_statistic_band(n, 2.0);
+    ASSERT_EQ(band.size(), n);
+    const double k = static_cast<double>(n);
+    EXPECT_NEAR(1 - std::pow(1 - Phi(band.front().lower), k), t, 1e-12) << n;
+    EXPECT_NEAR(1 - std::pow(1 - Phi(band.front().upper), k), 1 - t, 1e-12) << n;
+    EXPECT_NEAR(std::pow(Phi(band.back().lower), k), t, 1e-12) << n;
+    EXPECT_NEAR(std::pow(Phi(band.back().upper), k), 1 - t, 1e-12) << n;
+    for (std::size_t i = 0; i < n; ++i) {  // symmetric about the median rank
+      EXPECT_NEAR(band[i].lower, -band[n - 1 - i].upper, 1e-10) << n << " " << i;
+      EXPECT_LT(band[i].lower, band[i].upper);
+    }
+  }
+  EXPECT_NEAR(normal_order_statistic_band(1, 2.0)[0].lower, -2.0, 1e-12);  // one value: +-2 sigma itself
+  const OrderStatisticBand mid = normal_order_statistic_band(3, 2.0)[1];
+  auto middle_of_three = [&](double z) { return 3 * std::pow(Phi(z), 2) - 2 * std::pow(Phi(z), 3); };
+  EXPECT_NEAR(middle_of_three(mid.lower), t, 1e-12);
+  EXPECT_NEAR(middle_of_three(mid.upper), 1 - t, 1e-12);
+
+  // Coverage by simulation: of 20000 normal samples of 5, each ranked value falls inside its band
+  // with probability 1 - 2t = 0.9545; three binomial standard deviations are 0.0044.
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  const std::vector<OrderStatisticBand> band = normal_order_statistic_band(5, 2.0);
+  std::array<int, 5> inside{};
+  const int draws = 20000;
+  for (int d = 0; d < draws; ++d) {
+    std::array<double, 5> x;
+    for (double& v : x) v = normal(rng);
+    std::sort(x.begin(), x.end());
+    for (int i = 0; i < 5; ++i) inside[i] += x[i] > band[i].lower && x[i] < band[i].upper;
+  }
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(inside[i] / double(draws), 1 - 2 * t, 0.0044) << "rank " << i + 1;
+  EXPECT_THROW(normal_order_statistic_band(3, 0.0), std::invalid_argument);
+  EXPECT_THROW(normal_order_statistic_band(3, std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
 }

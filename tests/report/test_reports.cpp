@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "identify/mass_statistics.hpp"
 #include "report/compare_json.hpp"
 #include "report/reports.hpp"
 #include "support/synthetic_reports.hpp"
@@ -240,11 +241,28 @@ TEST(IdentificationHtml, TablesAndNormalProbabilityAgainstTheReference) {
   const auto json = rep.json();
   const auto& pts = json["normal_probability"]["points"];  // the primary (last: flexible) algorithm
   const auto& series = data[1]["series"];
-  ASSERT_EQ(series.size(), 2u);  // sets, normal line
+  ASSERT_EQ(series.size(), 4u);  // sets, normal line, the 2-sigma band's two edges
   ASSERT_EQ(series[0]["x"].size(), pts.size());
   for (size_t i = 0; i < pts.size(); ++i) {
     EXPECT_NEAR(series[0]["x"][i].get<double>(), 1e3 * pts[i]["value"].get<double>(), 1e-4);
     EXPECT_NEAR(series[0]["y"][i].get<double>(), pts[i]["quantile"].get<double>(), 1e-6);
+  }
+  // The band: the line's mean and sd (from the line's two ends) times each rank's order-statistic
+  // quantiles, at the points' heights; the second edge has no label (one legend entry).
+  EXPECT_EQ(series[2]["label"], "2σ band");
+  EXPECT_EQ(series[3]["label"], "");
+  const auto& line = series[1];
+  const double z0 = line["y"][0].get<double>(), z1 = line["y"][1].get<double>();
+  const double sd = (line["x"][1].get<double>() - line["x"][0].get<double>()) / (z1 - z0);
+  const double mean = line["x"][0].get<double>() - sd * z0;
+  const auto band = identify::normal_order_statistic_band(pts.size(), 2.0);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_NEAR(series[2]["x"][i].get<double>(), mean + sd * band[i].lower, 1e-3);
+    EXPECT_NEAR(series[3]["x"][i].get<double>(), mean + sd * band[i].upper, 1e-3);
+    EXPECT_EQ(series[2]["y"][i], series[0]["y"][i]);
+    const double x = series[0]["x"][i].get<double>();  // these five sets are no outliers
+    EXPECT_GT(x, series[2]["x"][i].get<double>());
+    EXPECT_LT(x, series[3]["x"][i].get<double>());
   }
 }
 
