@@ -2,9 +2,11 @@
 //   [--effects FILE]... [--reduced DIR]... [--static-cog X,Y[,Z]] [--tare FILE] [--reference FILE]
 //   [--mass KG] [--window S] [--degree N] [--threads N] --out DIR:
 // mass properties from measured free swings, one least-squares solve per
-// measurement set, statistics over the sets, DIR/identification.json.
+// measurement set (and per history alone, for the test-to-test scatter),
+// statistics over the sets, DIR/identification.json.
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
@@ -78,12 +80,42 @@ identify::IdentificationOptions options_from(const IdentifyArgs& a) {
   return o;
 }
 
-// Identifies every set; an unusable record or an unobservable set is bad input named by its file.
-std::vector<identify::IdentificationResult> identify_all(const identify::IdentificationRig& rig, const io::MeasurementSets& data,
-                                                    const identify::IdentificationOptions& options, int threads,
-                                                    bool quiet) {
+struct Identified {
+  std::vector<identify::IdentificationResult> sets;
+  std::vector<report::IdentificationReport::Test> tests;
+};
+
+// Each history of a set of two or more alone: the test-to-test scatter the
+// report's probability plot shows. A history that does not determine the
+// unknowns alone (one push excites too little) is kept as not observable;
+// the set's own solve decides what is bad input.
+std::vector<report::IdentificationReport::Test> identify_tests(const identify::IdentificationRig& rig,
+                                                               const io::MeasurementSet& set, std::size_t index,
+                                                               const identify::IdentificationOptions& options) {
+  std::vector<report::IdentificationReport::Test> tests;
+  if (set.records.size() < 2) return tests;
+  for (size_t h = 0; h < set.records.size(); ++h) {
+    report::IdentificationReport::Test t;
+    t.set = index;
+    t.file = set.files[h].string();
+    try {
+      t.result = identify::identify(rig, {&set.records[h]}, options);
+    } catch (const rig::RecordError& e) {  // e.g. a history shorter than the window alone
+      t.result.observable = false;
+      t.result.message = e.what();
+    }
+    tests.push_back(std::move(t));
+  }
+  return tests;
+}
+
+// Identifies every set, and every history of a set alone; an unusable record
+// or an unobservable set is bad input named by its file.
+Identified identify_all(const identify::IdentificationRig& rig, const io::MeasurementSets& data,
+                        const identify::IdentificationOptions& options, int threads, bool quiet) {
   const int n = static_cast<int>(data.sets.size());
   std::vector<identify::IdentificationResult> out(static_cast<size_t>(n));
+  std::vector<std::vector<report::IdentificationReport::Test>> tests(static_cast<size_t>(n));
   std::mutex progress;
   int done = 0;
   rig::parallel_for(n, threads, [&](int k) {
@@ -102,12 +134,15 @@ std::vector<identify::IdentificationResult> identify_all(const identify::Identif
                                     : data.names[static_cast<size_t>(k)];
       throw io::InputError(where, 0, "", out[static_cast<size_t>(k)].message);
     }
+    tests[static_cast<size_t>(k)] = identify_tests(rig, set, static_cast<size_t>(k), options);
     if (!quiet) {
       std::lock_guard<std::mutex> lock(progress);
       std::fprintf(stderr, "identify (%s): set %d/%d done\n", identify::to_string(rig.algorithm), ++done, n);
     }
   });
-  return out;
+  Identified all{std::move(out), {}};
+  for (auto& t : tests) std::move(t.begin(), t.end(), std::back_inserter(all.tests));
+  return all;
 }
 
 int run(const IdentifyArgs& a) {
@@ -152,7 +187,8 @@ int run(const IdentifyArgs& a) {
                    "carrying_frame_flexibility, rod_compliance in the rig or --effects files, nor --reduced): the flexible "
                    "algorithm equals the rigid one\n");
     }
-    report.add(alg, identify_all(idr, data, options, a.threads, a.quiet));
+    Identified identified = identify_all(idr, data, options, a.threads, a.quiet);
+    report.add(alg, std::move(identified.sets), std::move(identified.tests));
   }
   std::fputs(report.table().c_str(), stdout);
   const std::filesystem::path out(a.out);

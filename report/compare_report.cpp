@@ -42,36 +42,41 @@ void history_table(HtmlReport& r, const std::vector<diagnose::HistoryComparison>
 
 enum class Curves { measured_and_model, residual };
 
-// One channel group of one history: channels [first, first + count).
-void group_plot(HtmlReport& r, const diagnose::HistoryComparison& h, const std::vector<std::string>& names,
-                Eigen::Index first, Eigen::Index count, const std::string& group, Curves curves) {
+// One channel of one history, a small multiple: measured and model, or the residual.
+Plot channel_plot(const diagnose::HistoryComparison& h, const std::vector<double>& t, const Eigen::MatrixXd& residual,
+                  const std::string& name, Eigen::Index c, Curves curves) {
   Plot p;
+  p.title = name;
   p.x_label = "t (s)";
-  const std::string unit = channel_unit(names[static_cast<size_t>(first)]);
-  const std::vector<double> t = values(h.t());
-  const Eigen::MatrixXd residual = curves == Curves::residual ? h.residual() : Eigen::MatrixXd();
-  for (Eigen::Index c = first; c < first + count; ++c) {
-    const std::string& name = names[static_cast<size_t>(c)];
-    if (curves == Curves::residual) {
-      p.series.push_back({name, t, column(residual, c), false, {}});
-    } else {
-      p.series.push_back({name + " measured", t, column(h.measured(), c), false, {}});
-      p.series.push_back({name + " model", t, column(h.model, c), false, kDash});
-    }
+  const std::string unit = channel_unit(name);
+  if (curves == Curves::residual) {
+    p.series.push_back({"measured − model", t, column(residual, c), false, {}});
+    p.y_label = "residual (" + unit + ")";
+  } else {
+    p.series.push_back({"measured", t, column(h.measured(), c), false, {}});
+    p.series.push_back({"model", t, column(h.model, c), false, kDash});
+    p.y_label = name + " (" + unit + ")";
   }
-  p.title = group + (curves == Curves::residual ? ": residual (measured − model), " : ": measured and model, ") +
-            short_source(h.source);
-  p.y_label = (curves == Curves::residual ? "residual (" : group + " (") + unit + ")";
-  r.plot(p);
+  // A third of a page's width shows no more than this many points.
+  p.max_points = kSmallPlotPoints;
+  return p;
 }
 
-// Forces and angles of one history.
+// Every channel of one history, a small plot each: the rods across, forces,
+// alpha and beta down (one chart of twelve curves reads as none).
 void history_plots(HtmlReport& r, const diagnose::HistoryComparison& h, const std::vector<std::string>& names,
                    Curves curves) {
   const auto n = static_cast<Eigen::Index>(names.size() / 3);
   if (n == 0) return;
-  group_plot(r, h, names, 0, n, "forces", curves);
-  group_plot(r, h, names, n, 2 * n, "angles (alpha, beta)", curves);
+  const std::vector<double> t = values(h.t());
+  const Eigen::MatrixXd residual = curves == Curves::residual ? h.residual() : Eigen::MatrixXd();
+  std::vector<Plot> plots;
+  for (Eigen::Index c = 0; c < 3 * n; ++c)
+    plots.push_back(channel_plot(h, t, residual, names[static_cast<size_t>(c)], c, curves));
+  r.small_multiples(plots, static_cast<int>(n),
+                    (curves == Curves::residual ? "Residual (measured − model) per channel, "
+                                                : "Measured (solid) and model (dashed) per channel, ") +
+                        short_source(h.source) + ": load cells, then encoder angles alpha and beta, a rod per column");
 }
 
 // A line per mode of the model; modes of one kind within 15 % of each other
@@ -140,7 +145,7 @@ void trend_section(HtmlReport& r, const diagnose::ResidualAnalysis& a) {
   Plot p;
   p.title = "Overall NRMSE per window";
   p.x_label = "t from the record's start (s)";
-  p.y_label = "overall NRMSE";
+  p.y_label = "overall NRMSE (residual RMS / signal std)";
   p.series.push_back({"overall NRMSE", a.trend_t, a.trend_nrmse, false, {}});
   r.plot(p);
 }
@@ -155,6 +160,7 @@ void decay_section(HtmlReport& r, const diagnose::ResidualAnalysis& a, const std
   Plot p;
   p.kind = Plot::Kind::bar;
   p.title = "Decay rate per history";
+  p.x_label = "history";
   p.y_label = "decay rate (1/s)";
   PlotSeries measured{"measured", {}, {}, false, {}}, model{"model", {}, {}, false, {}};
   for (const auto& d : a.decay) {
@@ -249,7 +255,8 @@ void study_section(HtmlReport& r, const std::vector<StudyEntry>& study) {
   Plot p;
   p.kind = Plot::Kind::bar;
   p.title = "NRMSE per model version";
-  p.y_label = "NRMSE";
+  p.x_label = "model version";
+  p.y_label = "NRMSE (residual RMS / signal std)";
   PlotSeries overall{"overall NRMSE", {}, {}, false, {}}, force{"force NRMSE", {}, {}, false, {}};
   Table t{{"version", "model", "effects", "overall NRMSE", "force NRMSE", "angle NRMSE", "identified zG (mm)"}, {}};
   for (const auto& e : study) {
@@ -349,6 +356,7 @@ void ranking_section(HtmlReport& r, const diagnose::Diagnosis& d) {
   Plot p;
   p.kind = Plot::Kind::bar;
   p.title = "Share of the baseline residual explained (* significant)";
+  p.x_label = "candidate effect";
   p.y_label = "explained (%)";
   PlotSeries s{"explained (re-simulated)", {}, {}, false, {}};
   Table t{{"rank", "effect", "explained", "linearization predicted", "significant", "plausible", "p-value",

@@ -225,8 +225,15 @@ figure.plot { margin: 1rem 0 1.5rem; }
 figure.plot figcaption { font-weight: 600; margin-bottom: 0.3rem; }
 figure.plot .note { font-weight: normal; color: #666; font-size: 0.85rem; }
 .plot-box { position: relative; height: 380px; }
+.small-multiples { margin: 1rem 0 1.5rem; }
+.small-multiples .caption { font-weight: 600; margin-bottom: 0.3rem; }
+.small-multiples .grid { display: grid; gap: 0.4rem 1rem; }
+figure.plot.small { margin: 0; }
+figure.plot.small figcaption { font-weight: 600; font-size: 0.9rem; margin-bottom: 0; }
+figure.plot.small .plot-box { height: 230px; }
 #report-errors { color: #a00; white-space: pre-wrap; }
-@media print { .plot-box { height: 300px; } figure.plot, table { break-inside: avoid; } }
+@media print { .plot-box { height: 300px; } figure.plot.small .plot-box { height: 200px; }
+               figure.plot, table { break-inside: avoid; } }
 )css";
 
 std::string json_text(const json& j) {
@@ -253,6 +260,11 @@ json display_number(double v) {
   double r = v;
   std::from_chars(buf, end, r);
   return r;
+}
+
+std::string decimation_note(std::size_t series, std::size_t longest, std::size_t max_points) {
+  return "<span class=\"note\">(" + std::to_string(series) + " series of up to " + std::to_string(longest) +
+         " points drawn by " + std::to_string(max_points) + ", keeping each interval's minimum and maximum)</span>";
 }
 
 std::string plot_name(const Plot& p, int index) {
@@ -379,6 +391,40 @@ void HtmlReport::table(const Table& t, const std::string& caption) {
 }
 
 void HtmlReport::plot(const Plot& p) {
+  const Figure f = figure(p, "plot");
+  std::string h = "<figure class=\"plot\">\n<figcaption>" + escape_html(p.title);
+  if (f.decimated > 0) h += " " + decimation_note(f.decimated, f.longest, p.max_points);
+  body_ += h + "</figcaption>\n" + f.canvas + "</figure>\n";
+}
+
+void HtmlReport::small_multiples(const std::vector<Plot>& plots, int columns, const std::string& caption) {
+  if (columns < 1) throw std::invalid_argument("small multiples \"" + caption + "\": columns must be at least 1");
+  if (plots.empty()) return;
+  std::string cells;
+  std::size_t decimated = 0, longest = 0, max_points = 0;
+  const std::size_t before = plot_data_.size();
+  for (const Plot& p : plots) {
+    Figure f;
+    try {
+      f = figure(p, "small plot");
+    } catch (...) {
+      plot_data_.resize(before);  // all of the grid or none of it
+      throw;
+    }
+    cells += "<figure class=\"plot small\">\n<figcaption>" + escape_html(p.title) + "</figcaption>\n" + f.canvas +
+             "</figure>\n";
+    decimated += f.decimated;
+    longest = std::max(longest, f.longest);
+    if (f.decimated > 0) max_points = std::max(max_points, p.max_points);  // what the note says they were drawn by
+  }
+  std::string h = "<section class=\"small-multiples\">\n<div class=\"caption\">" + escape_html(caption);
+  if (decimated > 0) h += " " + decimation_note(decimated, longest, max_points);
+  h += "</div>\n<div class=\"grid\" style=\"grid-template-columns: repeat(" + std::to_string(columns) +
+       ", minmax(0, 1fr))\">\n" + cells + "</div>\n</section>\n";
+  body_ += h;
+}
+
+HtmlReport::Figure HtmlReport::figure(const Plot& p, const char* what) {
   const int index = plot_count();
   const std::string name = plot_name(p, index + 1);
   const bool bar = p.kind == Plot::Kind::bar;
@@ -437,16 +483,12 @@ void HtmlReport::plot(const Plot& p) {
                      {"series", std::move(series)},
                      {"markers", std::move(markers)}};
   plot_data_.push_back(json_text(data));
-
-  std::string h = "<figure class=\"plot\">\n<figcaption>" + escape_html(p.title);
-  if (decimated > 0)
-    h += " <span class=\"note\">(" + std::to_string(decimated) + " series" +
-         " of up to " + std::to_string(longest) + " points drawn by " + std::to_string(p.max_points) +
-         ", keeping each interval's minimum and maximum)</span>";
-  h += "</figcaption>\n<div class=\"plot-box\"><canvas id=\"plot-" + std::to_string(index) +
-       "\" role=\"img\" aria-label=\"" + escape_html(p.title.empty() ? "plot" : p.title) +
-       "\"></canvas></div>\n</figure>\n";
-  body_ += h;
+  Figure f;
+  f.canvas = "<div class=\"plot-box\"><canvas id=\"plot-" + std::to_string(index) + "\" role=\"img\" aria-label=\"" +
+             escape_html(p.title.empty() ? what : p.title) + "\"></canvas></div>\n";
+  f.decimated = decimated;
+  f.longest = longest;
+  return f;
 }
 
 int HtmlReport::plot_count() const { return static_cast<int>(plot_data_.size()); }

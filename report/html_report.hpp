@@ -20,6 +20,9 @@ namespace rigflex::report {
 
 // Series longer than this are decimated for display (Plot::max_points).
 inline constexpr std::size_t kReportMaxPoints = 4000;
+// Per series of a small multiple (a third of the page wide): 1500 points are
+// still several per pixel column.
+inline constexpr std::size_t kSmallPlotPoints = 1500;
 
 struct PlotSeries {
   std::string label;
@@ -65,6 +68,11 @@ class HtmlReport {
   // and values <= 0 on a log axis, are gaps (a point without x is dropped).
   // Numbers are kept to 7 significant digits, far below a screen pixel.
   void plot(const Plot& p);
+  // Plots of one kind side by side, `columns` to a row, smaller, under one
+  // caption (a channel each: one crowded chart becomes a grid a reader
+  // scans). Each plot is checked as plot() checks it and counts as a plot.
+  // Throws std::invalid_argument for columns < 1.
+  void small_multiples(const std::vector<Plot>& plots, int columns, const std::string& caption);
 
   std::string html() const;  // the whole document
   // Writes html() through io::write_atomically: the file appears whole or not
@@ -73,6 +81,13 @@ class HtmlReport {
   int plot_count() const;
 
  private:
+  struct Figure {
+    std::string canvas;  // the plot's box and canvas
+    std::size_t decimated = 0, longest = 0;
+  };
+  // Records the plot's data; `what` names an untitled plot for screen readers.
+  Figure figure(const Plot& p, const char* what);
+
   std::string title_;
   std::string body_;                    // HTML of the blocks so far
   std::vector<std::string> plot_data_;  // one JSON object per plot

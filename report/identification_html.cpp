@@ -227,16 +227,25 @@ void probability_series(Plot& p, const std::string& label, std::vector<double> d
 // One algorithm's plot; none when no set has a finite height.
 void normal_probability_plot(HtmlReport& r, const IdentificationReport& rep, const IdentificationReport::Algorithm& a) {
   const HeightReference ref = height_reference(rep, a);
-  std::vector<double> z = component_of(a.records, 3);  // zG
-  std::vector<double> finite = z;
-  std::erase_if(finite, [](double v) { return !std::isfinite(v); });
-  const double base = ref.z ? *ref.z : mean_sd(finite).first;
+  const HeightSample sample = height_sample(a);
+  std::vector<double> z = sample.z;
+  const double base = ref.z ? *ref.z : mean_sd(z).first;
   for (double& v : z) v = 1e3 * (v - base);
   Plot p;
   p.title = std::string(identify::to_string(a.algorithm)) + " algorithm: CoG height against the " + ref.what;
   p.x_label = "zG − " + ref.what + " (mm)";
-  p.y_label = "standard normal quantile";
-  probability_series(p, "sets", z);
+  p.y_label = "standard normal quantile (σ)";
+  const bool tests = sample.of == "tests";
+  probability_series(p, tests ? "tests (each history alone)" : "sets", z);
+  if (tests) {  // the sets' own result: all of a set's histories in one solve
+    std::vector<double> sets = component_of(a.records, 3);
+    std::erase_if(sets, [](double v) { return !std::isfinite(v); });
+    if (!sets.empty()) {
+      const double m = 1e3 * (mean_sd(sets).first - base);
+      p.markers.push_back({m, sets.size() == 1 ? "the set, all histories: " + fixed(m, 2) + " mm"
+                                               : "mean of the sets: " + fixed(m, 2) + " mm"});
+    }
+  }
   if (!p.series.empty()) r.plot(p);
 }
 
@@ -247,11 +256,15 @@ void normal_probability_section(HtmlReport& r, const IdentificationReport& rep) 
     return;
   }
   const std::string what = rep.algorithms.empty() ? "" : height_reference(rep, rep.algorithms.front()).what;
-  r.paragraph("Per set the identified zG minus the " + what +
-              ", against the standard-normal quantile of its rank (Blom positions). Points along the dashed line "
-              "(mean and standard deviation of the sets): the set-to-set scatter is normal; the line's offset "
-              "from 0 is the bias. The dotted band holds each ranked set of a normal sample this size with 2σ "
-              "(95.45 %) probability: a set outside it is an outlier, or the scatter is not normal.");
+  r.paragraph(
+      "Per test (each history identified alone; per set where the sets hold one history each) the "
+      "identified zG minus the " +
+      what +
+      ", against the standard-normal quantile of its rank (Blom positions). Points along the dashed line "
+      "(their mean and standard deviation): the scatter is normal; the line's offset from 0 is the bias. "
+      "The dotted band holds each ranked point of a normal sample this size with 2σ (95.45 %) probability: "
+      "a point outside it is an outlier, or the scatter is not normal. Where tests are plotted, the vertical "
+      "line is the sets' own result (all of a set's histories in one solve).");
   const int before = r.plot_count();
   for (const auto& a : rep.algorithms) normal_probability_plot(r, rep, a);
   if (r.plot_count() == before) r.paragraph("No set has a finite CoG height.");

@@ -3,9 +3,11 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 
-#include "report/json_write.hpp"
 #include "io/mass_record.hpp"
+#include "report/json_write.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::report {
@@ -85,6 +87,21 @@ std::array<double, 9> errors(const fe::MassProperties& p, const fe::MassProperti
   return e;
 }
 
+Json test_json(const IdentificationReport& rep, const IdentificationReport::Test& t) {
+  Json j;
+  j["set"] = rep.set_names[t.set];
+  j["file"] = t.file;
+  j["observable"] = t.result.observable;
+  if (!t.result.observable) {
+    j["message"] = t.result.message;
+    return j;
+  }
+  const Json rec = io::mass_record_json(t.record);
+  for (const auto& [k, v] : rec.items()) j[k] = v;
+  j["condition_number"] = t.result.condition_number;
+  return j;
+}
+
 Json algorithm_json(const IdentificationReport& rep, const IdentificationReport::Algorithm& a) {
   Json j;
   j["algorithm"] = identify::to_string(a.algorithm);
@@ -95,6 +112,11 @@ Json algorithm_json(const IdentificationReport& rep, const IdentificationReport:
     sets.push_back(set_json(rep.set_names[k], rep.set_files[k], a.results[k], a.records[k], rep.tare.has_value()));
   }
   j["sets"] = sets;
+  if (!a.tests.empty()) {
+    Json tests = Json::array();
+    for (const auto& t : a.tests) tests.push_back(test_json(rep, t));
+    j["tests"] = tests;
+  }
   if (rep.reference) {
     Json err = Json::array();
     std::vector<double> zg;
@@ -120,23 +142,41 @@ Json algorithm_json(const IdentificationReport& rep, const IdentificationReport:
     static_z = rep.reference->cog.z();
   }
   if (static_z) {
+    const HeightSample sample = height_sample(a);
     std::vector<double> dz;
-    for (const auto& rec : a.records) dz.push_back(rec.cog.z() - *static_z);
+    for (const double z : sample.z) dz.push_back(z - *static_z);
     Json pts = Json::array();
     for (const auto& p : identify::normal_probability(dz)) {
       pts.push_back({{"value", p.value}, {"probability", p.probability}, {"quantile", p.quantile}});
     }
-    j["normal_probability"] = {{"quantity", "zG - static reference zG (m)"}, {"points", pts}};
+    j["normal_probability"] = {{"quantity", "zG - static reference zG (m)"}, {"of", sample.of}, {"points", pts}};
   }
   return j;
 }
 
 }  // namespace
 
-void IdentificationReport::add(identify::IdentificationAlgorithm a, std::vector<identify::IdentificationResult> results) {
-  Algorithm alg{a, std::move(results), {}};
-  for (const auto& r : alg.results) alg.records.push_back(tare ? identify::subtract_tare(r.properties, *tare) : r.properties);
+void IdentificationReport::add(identify::IdentificationAlgorithm a, std::vector<identify::IdentificationResult> results,
+                               std::vector<Test> tests) {
+  Algorithm alg{a, std::move(results), {}, std::move(tests)};
+  auto record = [&](const fe::MassProperties& p) { return tare ? identify::subtract_tare(p, *tare) : p; };
+  for (const auto& r : alg.results) alg.records.push_back(record(r.properties));
+  for (auto& t : alg.tests) {
+    if (t.set >= set_names.size())
+      throw std::invalid_argument("identification report: test " + t.file + " of set " + std::to_string(t.set + 1) +
+                                  " of " + std::to_string(set_names.size()));
+    if (t.result.observable) t.record = record(t.result.properties);
+  }
   algorithms.push_back(std::move(alg));
+}
+
+HeightSample height_sample(const IdentificationReport::Algorithm& a) {
+  HeightSample tests{{}, "tests"}, sets{{}, "sets"};
+  for (const auto& t : a.tests)
+    if (t.result.observable && std::isfinite(t.record.cog.z())) tests.z.push_back(t.record.cog.z());
+  for (const auto& r : a.records)
+    if (std::isfinite(r.cog.z())) sets.z.push_back(r.cog.z());
+  return tests.z.size() >= 2 && tests.z.size() > sets.z.size() ? tests : sets;
 }
 
 nlohmann::ordered_json IdentificationReport::json() const {

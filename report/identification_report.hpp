@@ -26,18 +26,38 @@ struct IdentificationReport {
   std::optional<double> static_cog_height;      // zG of the static procedure (m)
   identify::AccuracyLimits limits;
 
+  // One history (a test: one push and free swing) identified alone.
+  struct Test {
+    std::size_t set = 0;  // index into set_names
+    std::string file;
+    identify::IdentificationResult result;  // of the system on the rods
+    fe::MassProperties record;              // tare subtracted when given; when result.observable
+  };
   struct Algorithm {
     identify::IdentificationAlgorithm algorithm;
     std::vector<identify::IdentificationResult> results;  // per set, of the system on the rods
     std::vector<fe::MassProperties> records;         // per set, tare subtracted when given
+    std::vector<Test> tests;                         // every history alone, in set order (sets of two or more)
   };
   std::vector<Algorithm> algorithms;
 
-  // Adds one algorithm's results (one per set, in set order).
-  void add(identify::IdentificationAlgorithm a, std::vector<identify::IdentificationResult> results);
+  // Adds one algorithm's results (one per set, in set order) and, optionally,
+  // its tests (`record` is filled here).
+  void add(identify::IdentificationAlgorithm a, std::vector<identify::IdentificationResult> results,
+           std::vector<Test> tests = {});
 
   nlohmann::ordered_json json() const;
   std::string table() const;
 };
+
+// The CoG heights a normal probability plot shows: every test's (each
+// history identified alone) where that gives more values than the sets and at
+// least two, else every set's; `of` says which ("tests" or "sets"). Non-finite
+// heights are left out.
+struct HeightSample {
+  std::vector<double> z;  // m
+  std::string of;
+};
+HeightSample height_sample(const IdentificationReport::Algorithm& a);
 
 }  // namespace rigflex::report

@@ -4,11 +4,13 @@
 // written, and bad input named by file, line and column.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "apps/cli_support.hpp"
 #include "support/gzip_file.hpp"
@@ -117,7 +119,21 @@ TEST_F(CliIdentify, ReferenceAndTareGiveErrorsSharesAndTheBody) {
   const nlohmann::json j = read_json(out.path() / "a" / "identification.json");
   ASSERT_TRUE(j.contains("accuracy_share")) << j.dump(1);
   EXPECT_EQ(j["accuracy_share"]["all"].get<double>(), 1.0);
-  ASSERT_EQ(j["normal_probability"]["points"].size(), 1u);
+  // Every test (each of the set's six histories identified alone) is in the JSON, and the normal
+  // probability data are over them: one set alone gave one point.
+  ASSERT_EQ(j["tests"].size(), 6u);
+  std::vector<double> dz;
+  for (const auto& test : j["tests"]) {
+    EXPECT_EQ(test["set"], j["sets"][0]["name"]);
+    ASSERT_TRUE(test["observable"].get<bool>()) << test.dump();
+    // One push's record pins the CoG height too (the flexible algorithm's 2 mm; it scatters by 0.1 mm).
+    EXPECT_NEAR(test["cog"][2].get<double>(), kTrueZg, 0.002) << test["file"];
+    dz.push_back(test["cog"][2].get<double>() - kTrueZg);
+  }
+  std::sort(dz.begin(), dz.end());
+  EXPECT_EQ(j["normal_probability"]["of"], "tests");
+  ASSERT_EQ(j["normal_probability"]["points"].size(), 6u);
+  for (size_t i = 0; i < 6; ++i) EXPECT_NEAR(j["normal_probability"]["points"][i]["value"].get<double>(), dz[i], 1e-12);
   // Tare: the body is the system minus 400 kg at z = -0.1: its CoG moves to (m z - 400 (-0.1)) / (m - 400).
   const CliRun t = run(args + " --tare " + (out.path() / "tare.yaml").string() + " --out " + (out.path() / "b").string());
   ASSERT_EQ(t.code, 0) << t.out;
@@ -126,6 +142,10 @@ TEST_F(CliIdentify, ReferenceAndTareGiveErrorsSharesAndTheBody) {
   EXPECT_NEAR(b["mean"]["mass"].get<double>(), 2514.0, 1e-9);
   EXPECT_NEAR(b["mean"]["cog"][2].get<double>(), (2914.0 * zs + 40.0) / 2514.0, 1e-12);
   EXPECT_NEAR(b["sets"][0]["system"]["cog"][2].get<double>(), zs, 1e-15);
+  for (size_t k = 0; k < 6; ++k) {  // the tests are the body's too
+    const double z_test = j["tests"][k]["cog"][2].get<double>();
+    EXPECT_NEAR(b["tests"][k]["cog"][2].get<double>(), (2914.0 * z_test + 40.0) / 2514.0, 1e-12);
+  }
 }
 
 TEST_F(CliIdentify, ImpossibleAnglesAreNamedByFileLineAndColumn) {

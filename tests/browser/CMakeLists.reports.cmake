@@ -8,7 +8,7 @@ target_include_directories(make_compare_report PRIVATE ${CMAKE_CURRENT_SOURCE_DI
 target_link_libraries(make_compare_report PRIVATE rigflex::report rigflex_warnings)
 set(rigflex_command_report_dir ${CMAKE_CURRENT_BINARY_DIR}/browser)
 # report kind and the plots it holds
-foreach(kind_plots compare:9 diagnosis:7 identification:2 sweep:2)
+foreach(kind_plots compare:23 diagnosis:14 identification:2 sweep:2)
   string(REPLACE ":" ";" kind_plots ${kind_plots})
   list(GET kind_plots 0 kind)
   list(GET kind_plots 1 plots)

@@ -1,8 +1,8 @@
 // Writes a command report (report/reports.hpp) from the synthetic results of
 // tests/support/synthetic_reports.hpp, for the browser test
 // (tests/browser/check_report.sh):
-//   make_compare_report compare OUT.html          9 plots: 2 histories x 9 channels x 7500 samples
-//   make_compare_report diagnosis OUT.html        7 plots: 3 ranked effects, baseline with its analysis
+//   make_compare_report compare OUT.html          23 plots: 2 histories x 9 channels x 7500 samples
+//   make_compare_report diagnosis OUT.html        14 plots: 3 ranked effects, baseline with its analysis
 //   make_compare_report identification OUT.html   2 plots: rigid and flexible, 5 sets, reference
 //   make_compare_report sweep OUT.html            2 plots: mass and stiffness sweeps
 // Prints the number of plots written.

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "report/html_report.hpp"
 #include "support/temp_files.hpp"
@@ -150,6 +151,40 @@ TEST(HtmlReport, CountsPlotsAndCanvases) {
   EXPECT_NE(h.find("window.__reportErrors"), std::string::npos);
   EXPECT_NE(h.find("dataset.plotsRendered"), std::string::npos);
   EXPECT_NE(h.find("animation: false"), std::string::npos);
+}
+
+TEST(HtmlReport, SmallMultiplesAreAGridOfPlotsAllOrNone) {
+  HtmlReport r("grid");
+  r.plot(line_plot("before", {1, 2}, {3, 4}));
+  std::vector<Plot> cells;
+  for (const char* name : {"F1", "F2", "F3", "F4"}) cells.push_back(line_plot(name, {0, 1, 2}, {1, 2, 3}));
+  cells[1].max_points = 8;
+  cells[1].series[0].x.assign(100, 0.0);
+  cells[1].series[0].y.assign(100, 1.0);
+  for (int i = 0; i < 100; ++i) cells[1].series[0].x[i] = i;
+  r.small_multiples(cells, 2, "<forces> per rod");
+  EXPECT_EQ(r.plot_count(), 5);
+  const std::string h = without_library(r);
+  EXPECT_EQ(count(h, "<canvas id=\"plot-"), 5u);
+  for (int i = 0; i < 5; ++i) EXPECT_NE(h.find("<canvas id=\"plot-" + std::to_string(i) + "\""), std::string::npos);
+  EXPECT_EQ(count(h, "<figure class=\"plot small\">"), 4u);
+  EXPECT_NE(h.find("grid-template-columns: repeat(2, minmax(0, 1fr))"), std::string::npos);
+  EXPECT_NE(h.find("&lt;forces&gt; per rod <span class=\"note\">(1 series of up to 100 points drawn by 8"),
+            std::string::npos);
+  const nlohmann::json data = plot_data(h);
+  ASSERT_EQ(data.size(), 5u);
+  EXPECT_EQ(data[1]["title"], "F1");
+  EXPECT_EQ(data[4]["title"], "F4");
+
+  // A plot that does not fit leaves nothing of the grid behind.
+  cells[2].series[0].y.pop_back();
+  EXPECT_THROW(r.small_multiples(cells, 2, "broken"), std::invalid_argument);
+  EXPECT_EQ(r.plot_count(), 5);
+  EXPECT_EQ(plot_data(without_library(r)).size(), 5u);
+  EXPECT_EQ(without_library(r).find("broken"), std::string::npos);
+  EXPECT_THROW(r.small_multiples(cells, 0, "none"), std::invalid_argument);
+  r.small_multiples({}, 3, "empty");  // nothing to draw: nothing written
+  EXPECT_EQ(without_library(r).find("empty"), std::string::npos);
 }
 
 TEST(HtmlReport, NonFiniteNumbersBecomeNullNotBrokenJson) {

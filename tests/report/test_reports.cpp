@@ -9,9 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "identify/mass_statistics.hpp"
 #include "report/compare_json.hpp"
+#include "report/identification_report.hpp"
 #include "report/reports.hpp"
 #include "support/synthetic_reports.hpp"
 
@@ -39,20 +42,35 @@ nlohmann::json plot_data(const report::HtmlReport& r) {
 
 TEST(CompareReport, HasEveryPlotAndSection) {
   const report::HtmlReport r = report::compare_report(comparison(), context(), study());
-  // measured/model forces + angles, residual forces + angles, 2 spectra, trend, decay, study
-  EXPECT_EQ(r.plot_count(), 9);
-  for (const char* s : {"F1 measured", "F1 model", "alpha1 measured", "beta3 model", "Residual spectrum, forces",
-                        "swing 0.54, 0.56 Hz", "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history",
-                        "v1 rig.yaml", "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck",
-                        "Warning: h2.csv: the model does not follow", "identified − reference", "zG (mm)", "3.50"})
+  // a small plot per channel (3 x kRods) of measured and model, again of the residual, 2 spectra, trend, decay,
+  // study
+  constexpr int kChannels = 3 * kRods;
+  EXPECT_EQ(r.plot_count(), 2 * kChannels + 5);
+  for (const char* s :
+       {"Measured (solid) and model (dashed) per channel", "Residual (measured − model) per channel",
+        "a rod per column", "grid-template-columns: repeat(3,", "Residual spectrum, forces", "swing 0.54, 0.56 Hz",
+        "swing 0.81 Hz", "rod constraint 150 Hz", "Overall NRMSE per window", "Decay rate per history", "v1 rig.yaml",
+        "v2 rig.yaml + drag.yaml", "sign_of_velocity", "light-truck", "Warning: h2.csv: the model does not follow",
+        "identified − reference", "zG (mm)", "3.50"})
     EXPECT_TRUE(has(r, s)) << s;
   const nlohmann::json data = plot_data(r);
-  ASSERT_EQ(data.size(), 9u);
-  EXPECT_EQ(data[0]["series"].size(), 2u * kRods);     // forces measured and model
-  EXPECT_EQ(data[1]["series"].size(), 4u * kRods);     // alpha and beta measured and model
-  EXPECT_EQ(data[3]["series"].size(), 2u * kRods);     // angle residuals
-  EXPECT_EQ(data[4]["markers"].size(), 4u);            // the model's modes
-  EXPECT_EQ(data[8]["categories"][0], "v1 rig.yaml");
+  ASSERT_EQ(data.size(), 2u * kChannels + 5);
+  const std::vector<std::string> names = diagnose::channel_names(kRods);
+  for (int c = 0; c < kChannels; ++c) {  // the channel's own plot, its unit on the axis, both curves
+    const auto& plot = data[c];
+    const auto& residual = data[kChannels + c];
+    EXPECT_EQ(plot["title"], names[c]);
+    EXPECT_EQ(plot["y_label"], names[c] + (c < kRods ? " (N)" : " (rad)"));
+    ASSERT_EQ(plot["series"].size(), 2u);
+    EXPECT_EQ(plot["series"][0]["label"], "measured");
+    EXPECT_EQ(plot["series"][1]["label"], "model");
+    EXPECT_EQ(residual["title"], names[c]);
+    EXPECT_EQ(residual["y_label"], std::string(c < kRods ? "residual (N)" : "residual (rad)"));
+    ASSERT_EQ(residual["series"].size(), 1u);
+    EXPECT_LE(plot["series"][0]["x"].size(), report::kSmallPlotPoints);
+  }
+  EXPECT_EQ(data[2 * kChannels]["markers"].size(), 4u);  // the model's modes
+  EXPECT_EQ(data[2 * kChannels + 4]["categories"][0], "v1 rig.yaml");
 }
 
 TEST(CompareReport, EmptyStudyAndMissingIdentification) {
@@ -62,7 +80,7 @@ TEST(CompareReport, EmptyStudyAndMissingIdentification) {
   report::CompareContext x = context();
   x.reference.reset();
   const report::HtmlReport r = report::compare_report(c, x, {});
-  EXPECT_EQ(r.plot_count(), 8);
+  EXPECT_EQ(r.plot_count(), 2 * 3 * kRods + 4);
   EXPECT_FALSE(has(r, "Error by model version"));
   EXPECT_TRUE(has(r, "Not identified (flexible algorithm): CoG height not observable"));
 }
@@ -82,7 +100,7 @@ TEST(CompareReport, NonFiniteValuesAreGapsAndDashes) {
   s[0].overall_nrmse = kNaN;
   report::HtmlReport r("");
   ASSERT_NO_THROW(r = report::compare_report(c, context(), s));
-  EXPECT_EQ(r.plot_count(), 9);
+  EXPECT_EQ(r.plot_count(), 2 * 3 * kRods + 5);
   EXPECT_TRUE(has(r, "<td>–</td>"));
 }
 
@@ -127,7 +145,7 @@ TEST(CompareReport, EscapesSources) {
 TEST(DiagnosisReport, RanksEffectsAndAdvisesOnTheMissingOne) {
   const diagnose::Diagnosis d = diagnosis(true);
   const report::HtmlReport r = report::diagnosis_report(d, context());
-  EXPECT_EQ(r.plot_count(), 3);  // ranking, baseline residual forces and angles
+  EXPECT_EQ(r.plot_count(), 1 + 3 * kRods);  // ranking, the baseline's residual per channel
   for (const char* s : {"missing effect: air_drag", "air_drag *", "joint_friction", "rod_compliance",
                         "12.5 ± 0.4", "N s/m", "add air_drag to the rig file", "air_drag: {coefficient: 12.5}",
                         "Missing effect: air_drag", "4.2 × the noise"})
@@ -191,7 +209,7 @@ TEST(DiagnosisReport, WithTheBaselineAnalysisAddsSpectraTrendAndDecay) {
   const diagnose::Diagnosis d = diagnosis(true);
   const diagnose::ResidualAnalysis a = analysis(diagnose::channel_names(kRods));
   const report::HtmlReport r = report::diagnosis_report(d, context(), &a);
-  EXPECT_EQ(r.plot_count(), 7);
+  EXPECT_EQ(r.plot_count(), 1 + 3 * kRods + 4);
   EXPECT_TRUE(has(r, "Residual spectrum, angles"));
 }
 
@@ -217,7 +235,7 @@ TEST(DiagnosisReport, NonFiniteValuesDoNotThrow) {
   d.baseline[0].target.record.channels(0, 0) = kNaN;
   report::HtmlReport r("");
   ASSERT_NO_THROW(r = report::diagnosis_report(d, context()));
-  EXPECT_EQ(r.plot_count(), 3);
+  EXPECT_EQ(r.plot_count(), 1 + 3 * kRods);
 }
 
 // ---------------------------------------------------------------- identification
@@ -264,6 +282,55 @@ TEST(IdentificationHtml, TablesAndNormalProbabilityAgainstTheReference) {
     EXPECT_GT(x, series[2]["x"][i].get<double>());
     EXPECT_LT(x, series[3]["x"][i].get<double>());
   }
+}
+
+// Each history identified alone (a test) is the probability plot's sample when
+// the tests outnumber the sets; the sets' result is a marker; a test that is
+// not observable alone is listed with its message and left out.
+TEST(IdentificationHtml, EveryTestIsAPointOfTheProbabilityPlot) {
+  report::IdentificationReport rep;
+  rep.set_names = {"set1"};
+  rep.set_files = {{"h1.csv", "h2.csv", "h3.csv", "h4.csv"}};
+  rep.reference = body();
+  std::vector<report::IdentificationReport::Test> tests;
+  for (int h = 0; h < 4; ++h) {
+    report::IdentificationReport::Test t;
+    t.set = 0;
+    t.file = "h" + std::to_string(h + 1) + ".csv";
+    t.result = identified(0.812 + 0.001 * (h - 1.5));
+    tests.push_back(t);
+  }
+  tests[2].result.observable = false;
+  tests[2].result.message = "Jxx not observable";
+  rep.add(identify::IdentificationAlgorithm::flexible, {identified(0.8121)}, tests);
+  const auto json = rep.json();
+  ASSERT_EQ(json["tests"].size(), 4u);
+  EXPECT_EQ(json["tests"][2]["observable"], false);
+  EXPECT_EQ(json["tests"][2]["message"], "Jxx not observable");
+  EXPECT_FALSE(json["tests"][2].contains("cog"));
+  EXPECT_NEAR(json["tests"][3]["cog"][2].get<double>(), 0.8135, 1e-12);
+  EXPECT_EQ(json["normal_probability"]["of"], "tests");
+  ASSERT_EQ(json["normal_probability"]["points"].size(), 3u);  // the three observable tests
+  const report::HtmlReport r = report::identification_html(rep);
+  const nlohmann::json data = plot_data(r);
+  ASSERT_EQ(data.size(), 1u);
+  EXPECT_EQ(data[0]["series"][0]["label"], "tests (each history alone)");
+  ASSERT_EQ(data[0]["series"][0]["x"].size(), 3u);
+  for (size_t i = 0; i < 3; ++i)
+    EXPECT_NEAR(data[0]["series"][0]["x"][i].get<double>(),
+                1e3 * json["normal_probability"]["points"][i]["value"].get<double>(), 1e-4);
+  ASSERT_EQ(data[0]["markers"].size(), 1u);  // the set's own result, against the reference
+  EXPECT_NEAR(data[0]["markers"][0]["x"].get<double>(), 1e3 * (0.8121 - body().cog.z()), 1e-4);
+  // Tests that do not outnumber the sets leave the sets as the sample.
+  report::IdentificationReport two = identification(true);
+  for (auto& a : two.algorithms) a.tests.clear();
+  EXPECT_EQ(report::height_sample(two.algorithms[0]).of, "sets");
+  EXPECT_EQ(report::height_sample(two.algorithms[0]).z.size(), 5u);
+  // A test naming a set that does not exist is refused.
+  report::IdentificationReport bad;
+  bad.set_names = {"set1"};
+  tests[0].set = 3;
+  EXPECT_THROW(bad.add(identify::IdentificationAlgorithm::rigid, {identified(0.8)}, tests), std::invalid_argument);
 }
 
 TEST(IdentificationHtml, StaticHeightWithTareMatchesTheJson) {
@@ -337,6 +404,46 @@ TEST(SweepHtml, NoPointsOrNoF1) {
   ASSERT_NO_THROW(r = report::sweep_html("x", pts));
   EXPECT_EQ(r.plot_count(), 0);
   EXPECT_TRUE(has(r, "no error curve"));
+}
+
+// ---------------------------------------------------------------- every command report
+
+// A reviewer reads a chart at a glance only when it says what it shows: every
+// plot of the four command reports has a title, both axes labelled with their
+// unit in parentheses (a bar chart's categories name what they are instead),
+// a legend entry per series (a band's second edge continues the one before
+// it) and data to draw.
+TEST(CommandReports, EveryChartHasUnitsLegendsAndData) {
+  const diagnose::ResidualAnalysis a = analysis(diagnose::channel_names(kRods));
+  diagnose::ModelComparison c = comparison();
+  c.analysis = a;
+  const std::vector<std::pair<std::string, report::HtmlReport>> reports = {
+      {"compare", report::compare_report(c, context(), study())},
+      {"diagnosis", report::diagnosis_report(diagnosis(true), context(), &a)},
+      {"identification", report::identification_html(identification(true))},
+      {"sweep", report::sweep_html("light-truck", sweep_points())}};
+  for (const auto& [name, r] : reports) {
+    const nlohmann::json data = plot_data(r);
+    ASSERT_GT(data.size(), 0u) << name;
+    for (size_t i = 0; i < data.size(); ++i) {
+      const auto& p = data[i];
+      const std::string where = name + " plot " + std::to_string(i + 1) + " (" + p["title"].get<std::string>() + ")";
+      const bool bar = p["kind"] == "bar";
+      const std::string x = p["x_label"], y = p["y_label"];
+      EXPECT_FALSE(p["title"].get<std::string>().empty()) << where;
+      EXPECT_FALSE(x.empty()) << where;
+      EXPECT_TRUE(y.find('(') != std::string::npos && y.find(')') != std::string::npos) << where << ": " << y;
+      if (!bar) {
+        EXPECT_TRUE(x.find('(') != std::string::npos && x.find(')') != std::string::npos) << where << ": " << x;
+      }
+      ASSERT_GT(p["series"].size(), 0u) << where;
+      EXPECT_FALSE(p["series"][0]["label"].get<std::string>().empty()) << where;
+      bool finite = false;
+      for (const auto& series : p["series"])
+        for (const auto& v : series["y"]) finite = finite || v.is_number();
+      EXPECT_TRUE(finite) << where << ": no data";
+    }
+  }
 }
 
 }  // namespace
