@@ -163,19 +163,15 @@ constexpr std::string_view kRenderJs = R"js(
     return p.series.some(function (s) { return s.y.some(function (v) { return v !== null; }); });
   }
 
-  // Any ink on the canvas; when the plot has data, ink in a series colour
-  // (axes, grid, text and markers are grey).
-  function drawn(canvas, data) {
+  // Ink in a series colour on the canvas (axes, grid, text and markers are grey).
+  function drawn(canvas) {
     if (!canvas.width || !canvas.height) return false;
     var px = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
-    var ink = false;
     for (var i = 0; i < px.length; i += 4) {
       if (px[i + 3] === 0) continue;
-      ink = true;
-      if (!data) return true;
       if (Math.max(px[i], px[i + 1], px[i + 2]) - Math.min(px[i], px[i + 1], px[i + 2]) > 60) return true;
     }
-    return ink && !data;
+    return false;
   }
 
   var plots = [];
@@ -190,7 +186,7 @@ constexpr std::string_view kRenderJs = R"js(
       var canvas = document.getElementById('plot-' + i);
       new Chart(canvas, config(p));
       // A chart counts as drawn only with data in it (a frame of axes is not a chart).
-      if (hasData(p) && drawn(canvas, true)) rendered++;
+      if (hasData(p) && drawn(canvas)) rendered++;
       else blank.push(i + 1);
     } catch (e) {
       console.error('plot ' + (i + 1) + ': ' + (e && e.stack ? e.stack : e));

@@ -56,13 +56,18 @@ Json mean_json(const identify::MassSummary& s) {
   return j;
 }
 
+// The spec's mass-properties record's keys, at the top level of j.
+void add_record(Json& j, const fe::MassProperties& record) {
+  const Json rec = io::mass_record_json(record);  // named: items() refers into it
+  for (const auto& [k, v] : rec.items()) j[k] = v;
+}
+
 Json set_json(const std::string& name, const std::vector<std::string>& files, const identify::IdentificationResult& r,
               const fe::MassProperties& record, bool tared) {
   Json j;
   j["name"] = name;
   j["files"] = files;
-  const Json rec = io::mass_record_json(record);
-  for (const auto& [k, v] : rec.items()) j[k] = v;
+  add_record(j, record);
   if (tared) j["system"] = io::mass_record_json(r.properties);
   const Json p = principal_json(record.inertia);
   j["principal_moments"] = p["principal_moments"];
@@ -96,8 +101,7 @@ Json test_json(const IdentificationReport& rep, const IdentificationReport::Test
     j["message"] = t.result.message;
     return j;
   }
-  const Json rec = io::mass_record_json(t.record);
-  for (const auto& [k, v] : rec.items()) j[k] = v;
+  add_record(j, t.record);
   j["condition_number"] = t.result.condition_number;
   return j;
 }
