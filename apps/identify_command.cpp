@@ -85,30 +85,6 @@ struct Identified {
   std::vector<report::IdentificationReport::Test> tests;
 };
 
-// Each history of a set of two or more alone: the test-to-test scatter the
-// report's probability plot shows. A history that does not determine the
-// unknowns alone (one push excites too little) is kept as not observable;
-// the set's own solve decides what is bad input.
-std::vector<report::IdentificationReport::Test> identify_tests(const identify::IdentificationRig& rig,
-                                                               const io::MeasurementSet& set, std::size_t index,
-                                                               const identify::IdentificationOptions& options) {
-  std::vector<report::IdentificationReport::Test> tests;
-  if (set.records.size() < 2) return tests;
-  for (size_t h = 0; h < set.records.size(); ++h) {
-    report::IdentificationReport::Test t;
-    t.set = index;
-    t.file = set.files[h].string();
-    try {
-      t.result = identify::identify(rig, {&set.records[h]}, options);
-    } catch (const rig::RecordError& e) {  // e.g. a history shorter than the window alone
-      t.result.observable = false;
-      t.result.message = e.what();
-    }
-    tests.push_back(std::move(t));
-  }
-  return tests;
-}
-
 // Identifies every set, and every history of a set alone; an unusable record
 // or an unobservable set is bad input named by its file.
 Identified identify_all(const identify::IdentificationRig& rig, const io::MeasurementSets& data,
@@ -134,7 +110,9 @@ Identified identify_all(const identify::IdentificationRig& rig, const io::Measur
                                     : data.names[static_cast<size_t>(k)];
       throw io::InputError(where, 0, "", out[static_cast<size_t>(k)].message);
     }
-    tests[static_cast<size_t>(k)] = identify_tests(rig, set, static_cast<size_t>(k), options);
+    std::vector<std::string> files;
+    for (const auto& f : set.files) files.push_back(f.string());
+    tests[static_cast<size_t>(k)] = report::identify_tests(rig, ptrs, files, static_cast<size_t>(k), options);
     if (!quiet) {
       std::lock_guard<std::mutex> lock(progress);
       std::fprintf(stderr, "identify (%s): set %d/%d done\n", identify::to_string(rig.algorithm), ++done, n);

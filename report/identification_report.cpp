@@ -174,6 +174,30 @@ void IdentificationReport::add(identify::IdentificationAlgorithm a, std::vector<
   algorithms.push_back(std::move(alg));
 }
 
+std::vector<IdentificationReport::Test> identify_tests(const identify::IdentificationRig& rig,
+                                                       const std::vector<const rig::Record*>& histories,
+                                                       const std::vector<std::string>& files, std::size_t index,
+                                                       const identify::IdentificationOptions& options) {
+  if (files.size() != histories.size())
+    throw std::invalid_argument("identify_tests: " + std::to_string(files.size()) + " file names for " +
+                                std::to_string(histories.size()) + " histories");
+  std::vector<IdentificationReport::Test> tests;
+  if (histories.size() < 2) return tests;
+  for (size_t h = 0; h < histories.size(); ++h) {
+    IdentificationReport::Test t;
+    t.set = index;
+    t.file = files[h];
+    try {
+      t.result = identify::identify(rig, {histories[h]}, options);
+    } catch (const rig::RecordError& e) {  // e.g. a history shorter than the window alone
+      t.result.observable = false;
+      t.result.message = e.what();
+    }
+    tests.push_back(std::move(t));
+  }
+  return tests;
+}
+
 HeightSample height_sample(const IdentificationReport::Algorithm& a) {
   HeightSample tests{{}, "tests"}, sets{{}, "sets"};
   for (const auto& t : a.tests)

@@ -50,6 +50,17 @@ struct IdentificationReport {
   std::string table() const;
 };
 
+// Each history of a set of two or more identified alone (a test; set `index`,
+// files[i] naming histories[i]): the test-to-test scatter. A history that
+// does not determine the unknowns alone (one push excites too little), or
+// that the identification refuses alone, is kept as not observable with the
+// reason; the set's own solve decides what is bad input. A set of one
+// history has no tests.
+std::vector<IdentificationReport::Test> identify_tests(const identify::IdentificationRig& rig,
+                                                       const std::vector<const rig::Record*>& histories,
+                                                       const std::vector<std::string>& files, std::size_t index,
+                                                       const identify::IdentificationOptions& options);
+
 // The CoG heights a normal probability plot shows: every test's (each
 // history identified alone) where that gives more values than the sets and at
 // least two, else every set's; `of` says which ("tests" or "sets"). Non-finite

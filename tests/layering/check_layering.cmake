@@ -4,7 +4,7 @@
 # Fails naming the file, the line and the include (or the CMake link) that
 # points up or sideways. verification/ is test support: it may use any
 # library folder, and no library folder may use it.
-set(order linalg fe reduction rig identify diagnose io report apps)
+set(order linalg fe reduction rig identify diagnose io report apps python)
 set(violations "")
 list(LENGTH order count)
 foreach(folder IN LISTS order verification)
