@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/eigen_backend.hpp"
 #include "apps/work_estimate.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
@@ -32,6 +33,7 @@ struct ModesArgs {
   int subspace = 0;
   int max_restarts = linalg::EigenOptions{}.max_restarts;
   bool no_retry = false;
+  BackendArgs backend;
 };
 
 // The elements that hold any of `nodes`, for naming the part a mechanism is in.
@@ -95,14 +97,19 @@ void print_table(const reduction::ModalAnalysis& a) {
 }
 
 int run(const ModesArgs& args) {
+  // Under MPI every rank reads, assembles and takes its part in the solve;
+  // rank 0 alone prints and writes.
+  const BackendRun backend(args.backend, false);
+  const bool quiet = args.quiet || !backend.root();
   std::optional<io::OutputFolder> folder;
-  if (!args.out.empty()) folder.emplace(args.out, "modes");
+  if (!args.out.empty() && backend.root()) folder.emplace(args.out, "modes");
   const io::ModelFile m = io::read_model(args.model);
   const double limit = memory_limit_bytes(args.max_memory_gib);
-  announce_assembly(args.model, m.model, limit, args.quiet);
+  announce_assembly(args.model, m.model, limit, quiet);
+  if (!quiet && !backend.builtin()) std::fprintf(stderr, "eigen solver: %s\n", backend.describe().c_str());
   linalg::EigenOptions opt;
   opt.max_factor_bytes = limit;
-  if (!args.quiet) {
+  if (!quiet) {
     opt.analyzed = [](const linalg::FactorStatistics& s) { std::fprintf(stderr, "%s\n", factor_line(s).c_str()); };
   }
   opt.count = args.count;
@@ -111,17 +118,19 @@ int run(const ModesArgs& args) {
   opt.max_restarts = args.max_restarts;
   opt.automatic_retry = !args.no_retry;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
-  if (!args.quiet)
-    opt.progress = [](const linalg::EigenProgress& p) {
-      std::fprintf(stderr, "\rlanczos: restart %d, %d converged", p.restart, p.converged);
+  const char* solver = backend.builtin() ? "lanczos" : "krylov-schur";
+  if (!quiet)
+    opt.progress = [solver](const linalg::EigenProgress& p) {
+      std::fprintf(stderr, "\r%s: restart %d, %d converged", solver, p.restart, p.converged);
       std::fflush(stderr);
     };
   fe::AssemblyOptions assembly;
-  if (!args.quiet) assembly.progress = assembly_progress();
-  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt, assembly);
-  if (!args.quiet) {
-    std::fprintf(stderr, "\nfactorization %.2f s, Lanczos %.2f s\n", a.result.factor_seconds,
-                 a.result.iteration_seconds);
+  if (!quiet) assembly.progress = assembly_progress();
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt, assembly, backend.backend());
+  if (!backend.root()) return 0;
+  if (!quiet) {
+    std::fprintf(stderr, "\nfactorization %.2f s, %s %.2f s\n", a.result.factor_seconds,
+                 backend.builtin() ? "Lanczos" : "Krylov-Schur", a.result.iteration_seconds);
   }
   if (a.result.over_memory_limit) {
     throw io::InputError(args.model, 0, "", memory_refusal(a.result.message));
@@ -175,6 +184,7 @@ int run(const ModesArgs& args) {
     io::FileBatch batch;
     nlohmann::json j = report::modes_json(m.name, a);
     j["supported"] = supported;
+    if (!backend.builtin()) j["solver"]["method"] = backend.describe();
     j["zero_frequency_modes"] = nlohmann::json::array();
     for (const auto& z : zero) j["zero_frequency_modes"].push_back(z.mode + 1);
     batch.add_text(dir / "modes.json", j.dump(2) + "\n");
@@ -212,6 +222,7 @@ void add_modes_command(CLI::App& app, int& exit_code) {
       ->check(positive());
   cmd->add_flag("--allow-mechanism", args->allow_mechanism,
                 "keep zero-frequency modes of a supported model (otherwise an error, exit 2)");
+  add_backend_options(*cmd, args->backend);
   cmd->callback([args, &exit_code] { exit_code = run(*args); });
 }
 

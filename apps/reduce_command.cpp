@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "apps/commands.hpp"
+#include "apps/eigen_backend.hpp"
 #include "apps/work_estimate.hpp"
 #include "fe/dof.hpp"
 #include "fe/error.hpp"
@@ -34,6 +36,7 @@ struct ReduceArgs {
   std::string out;
   bool quiet = false;
   std::optional<double> max_memory_gib;
+  BackendArgs backend;
 };
 
 reduction::FrameReductionOptions to_options(const ReduceArgs& a) {
@@ -117,13 +120,23 @@ void print_summary(const reduction::ReducedFrame& r) {
 }
 
 int run(const ReduceArgs& args) {
-  io::OutputFolder folder(args.out, "reduce");
+  // Under MPI every rank reduces (the eigen solves collectively, the
+  // vectors gathered on every rank for the checks); rank 0 alone prints
+  // and writes.
+  const BackendRun backend(args.backend, true);
+  const bool quiet = args.quiet || !backend.root();
+  std::optional<io::OutputFolder> folder;
+  if (backend.root()) folder.emplace(args.out, "reduce");
   const io::ModelFile m = io::read_model(args.model);
   const double limit = memory_limit_bytes(args.max_memory_gib);
-  announce_assembly(args.model, m.model, limit, args.quiet, "reduce: ");
-  reduction::FrameReductionOptions o = to_options(args);
+  announce_assembly(args.model, m.model, limit, quiet, "reduce: ");
+  if (!quiet && !backend.builtin()) std::fprintf(stderr, "reduce: eigen solver: %s\n", backend.describe().c_str());
+  ReduceArgs effective = args;
+  effective.quiet = quiet;
+  reduction::FrameReductionOptions o = to_options(effective);
   o.max_factor_bytes = limit;
-  if (!args.quiet) {
+  o.eigen_backend = backend.backend();
+  if (!quiet) {
     o.assembly_progress = assembly_progress("reduce: ");
     o.analyzed = [](const linalg::FactorStatistics& s) {
       std::fprintf(stderr, "reduce: %s\n", factor_line(s).c_str());
@@ -135,6 +148,7 @@ int run(const ReduceArgs& args) {
   } catch (const fe::ModelError& e) {
     throw io::InputError(args.model, 0, "--interface", e.what());
   } catch (const reduction::ReductionError& e) {
+    if (!backend.root()) return 1;
     if (e.over_memory_limit) throw io::InputError(args.model, 0, "", memory_refusal(e.what()));
     std::fprintf(stderr, "rigflex: error: %s: %s\n", args.model.c_str(), e.what());
     if (!e.free_dofs.empty()) {
@@ -144,11 +158,12 @@ int run(const ReduceArgs& args) {
     }
     return 1;
   }
+  if (!backend.root()) return 0;
   r.name = m.name;
   print_summary(r);
   io::FileBatch batch;
   io::add_reduced_frame_files(batch, args.out, r);
-  folder.commit(batch);
+  folder->commit(batch);
   std::printf("wrote %s/reduced.json, reduced.mat, K.mtx, M.mtx, C.mtx and ss_A..ss_D.mtx, ss_T.mtx\n",
               args.out.c_str());
   return 0;
@@ -187,6 +202,7 @@ void add_reduce_command(CLI::App& app, int& exit_code) {
                   "GiB the assembly and each factorization may use (default: the machine's memory); a larger model "
                   "is refused before the work")
       ->check(positive());
+  add_backend_options(*cmd, a->backend);
   cmd->callback([a, &exit_code] { exit_code = run(*a); });
 }
 

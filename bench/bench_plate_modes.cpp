@@ -10,7 +10,12 @@
 //       verification/calculix.hpp), run as a child process;
 //   (c) SciPy eigsh (ARPACK shift-invert with SuperLU, Debian
 //       python3-scipy) on the same K and M (Matrix Market), same shift,
-//       run as a child process (bench/scipy_eigsh.py).
+//       run as a child process (bench/scipy_eigsh.py);
+//   (d) SLEPc's Krylov-Schur with shift-and-invert (linalg/slepc_eigen.hpp)
+//       on the same K and M, same shift and tolerance, through
+//       bench/slepc_eigs under mpiexec: with CHOLMOD on one rank (the
+//       factorization rigflex uses) and with MUMPS on each of --slepc-ranks
+//       (built with -DRIGFLEX_SLEPC=ON; one table row per configuration).
 // Targets (issue): at 100k and 1M DOFs eigen time within 1.5x of the floor,
 // at least 5x faster than CalculiX and SciPy, peak memory within 1.5x of
 // the factor's size.
@@ -20,6 +25,7 @@
 //                     [--skip-ccx] [--skip-scipy] [--max-peer-dofs 150000]
 //                     [--ccx-threads 1] [--scipy-timeout SECONDS] [--workdir /tmp/rigflex-bench-plate]
 //                     [--scipy-script bench/scipy_eigsh.py] [--keep]
+//                     [--skip-slepc] [--slepc-ranks 1,2] [--max-slepc-dofs 2M] [--model plate|ladder|girder|lattice]
 // Prints a markdown table on stdout, progress on stderr.
 //
 // Measurement notes:
@@ -46,12 +52,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <csignal>
-
 #include <algorithm>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -64,12 +69,13 @@
 #include <vector>
 
 #include "bench/bench_cli.hpp"
+#include "bench/bench_models.hpp"
 #include "bench/plate_model.hpp"
 #include "fe/assembly.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix.hpp"
 #include "linalg/eigen_solver.hpp"
 #include "linalg/sparse_cholesky.hpp"
+#include "verification/calculix.hpp"
 
 extern char** environ;
 
@@ -103,6 +109,17 @@ struct Options {
   int ccx_threads = 1;
   fs::path workdir = "/tmp/rigflex-bench-plate";
   fs::path scipy_script = fs::path(__FILE__).parent_path() / "scipy_eigsh.py";
+#ifdef RIGFLEX_SLEPC_EIGS
+  bool slepc = true;
+#else
+  bool slepc = false;
+#endif
+  std::vector<long> slepc_ranks{1, 2};
+  long max_slepc_dofs = 2000000;
+  // plate (the clamped plate above) or another kind of bench_models.hpp:
+  // ladder (beam ladder), girder (shell box girder), lattice (3D beam
+  // lattice), quad8 (8-node plate).
+  std::string model = "plate";
 };
 
 Options parse(int argc, char** argv) {
@@ -123,6 +140,14 @@ Options parse(int argc, char** argv) {
     else if (a == "--workdir") o.workdir = value();
     else if (a == "--scipy-script") o.scipy_script = value();
     else if (a == "--keep") o.keep = true;
+    else if (a == "--skip-slepc")
+      o.slepc = false;
+    else if (a == "--model")
+      o.model = value();
+    else if (a == "--slepc-ranks")
+      o.slepc_ranks = bench::parse_sizes(value());
+    else if (a == "--max-slepc-dofs")
+      o.max_slepc_dofs = bench::parse_size(value());
     else throw std::invalid_argument("unknown option " + a + " (see the head of bench_plate_modes.cpp)");
   }
   return o;
@@ -266,18 +291,31 @@ struct Row {
   std::optional<double> ccx_s, ccx_rss_mb, ccx_diff, scipy_s, scipy_rss_mb, scipy_diff, scipy_residual;
   long ccx_equations = 0;
   std::string ccx_note, scipy_note;
+  struct Slepc {
+    std::string solver;
+    long ranks = 1;
+    double setup = 0, solve = 0, eigen = 0, rss_max_rank = 0, rss_all = 0, diff = 0, residual = 0;
+    long solves = 0;
+    std::string note;  // set when it did not run to the end
+  };
+  std::vector<Slepc> slepc;
   double floor() const { return floor_factor + floor_solves; }
 };
 
 Row run_size(long target, const Options& o) {
   Row row;
-  row.n = divisions_for(target);
-  std::cerr << "== " << target << " DOFs: " << row.n << " x " << row.n << " MITC4 elements\n";
+  const bool plate = o.model == "plate";
+  row.n = plate ? divisions_for(target) : 0;
+  if (plate)
+    std::cerr << "== " << target << " DOFs: " << row.n << " x " << row.n << " MITC4 elements\n";
+  else
+    std::cerr << "== " << o.model << " of about " << target << " DOFs\n";
   row.peak_reset = reset_peak_rss();
   row.base_mb = status_kb("VmRSS:") / 1024.0;
   row.load = loadavg();
   auto t0 = clock_type::now();
-  fe::Model model = clamped_plate(row.n);
+  std::string kind;
+  fe::Model model = plate ? clamped_plate(row.n) : bench::model_of(o.model + ":" + std::to_string(target), kind);
   row.mesh = seconds_since(t0);
   t0 = clock_type::now();
   fe::AssembledSystem sys = fe::assemble(model);
@@ -353,16 +391,57 @@ Row run_size(long target, const Options& o) {
   if (o.repeat > 1) std::cerr << "   best of " << o.repeat << ": eigen " << row.eigen << " s, floor " << row.floor() << " s\n";
 
   const bool peers = row.dofs <= o.max_peer_dofs;
-  const fs::path dir = o.workdir / ("n" + std::to_string(row.n));
+  const fs::path dir = o.workdir / (o.model + std::to_string(row.dofs));
   fs::create_directories(dir);
+
+  char sigma[64], tol[32];
+  std::snprintf(sigma, sizeof sigma, "%.17g", r.shift);
+  std::snprintf(tol, sizeof tol, "%.3g", eo.tolerance);
+  bool written = false;
+  const auto write_matrices = [&] {
+    if (!written) write_mtx(sys.K, dir / "K.mtx"), write_mtx(sys.M, dir / "M.mtx");
+    written = true;
+  };
+
+#ifdef RIGFLEX_SLEPC_EIGS
+  // (d) SLEPc on the same matrices: CHOLMOD on one rank, MUMPS on each rank count.
+  if (o.slepc && row.dofs <= o.max_slepc_dofs) {
+    write_matrices();
+    std::vector<std::pair<std::string, long>> runs{{"cholmod", 1}};
+    for (long ranks : o.slepc_ranks) runs.emplace_back("mumps", ranks);
+    for (const auto& [solver, ranks] : runs) {
+      Row::Slepc s;
+      s.solver = solver;
+      s.ranks = ranks;
+      std::cerr << "   slepc " << solver << " on " << ranks << " rank(s) ...\n";
+      const ChildResult c =
+          run_child({RIGFLEX_MPIEXEC, "-n", std::to_string(ranks), RIGFLEX_SLEPC_EIGS, (dir / "K.mtx").string(),
+                     (dir / "M.mtx").string(), "--count", std::to_string(o.modes), "--shift", sigma, "--tol", tol,
+                     "--direct-solver", solver},
+                    dir / ("slepc_" + solver + "_" + std::to_string(ranks) + ".json"));
+      if (c.status != 0) {
+        s.note = "failed (status " + std::to_string(c.status) + ")";
+        std::cerr << c.output << "\n";
+      } else {
+        s.setup = json_number(c.output, "setup_seconds");
+        s.solve = json_number(c.output, "solve_seconds");
+        s.eigen = json_number(c.output, "eigen_seconds");
+        s.solves = static_cast<long>(json_number(c.output, "solves"));
+        s.rss_max_rank = json_number(c.output, "rss_mb_max_rank");
+        s.rss_all = json_number(c.output, "rss_mb_all_ranks");
+        s.residual = json_number(c.output, "max_residual");
+        s.diff = max_rel_diff(json_numbers(c.output, "frequencies_hz"), f);
+        std::cerr << "   slepc " << solver << " x" << ranks << ": " << s.eigen << " s (factor " << s.setup
+                  << " s), max df/f " << s.diff << "\n";
+      }
+      row.slepc.push_back(s);
+    }
+  }
+#endif
 
   // (c) SciPy on the same matrices.
   if (o.scipy && peers) {
-    write_mtx(sys.K, dir / "K.mtx");
-    write_mtx(sys.M, dir / "M.mtx");
-    char sigma[64], tol[32];
-    std::snprintf(sigma, sizeof sigma, "%.17g", r.shift);
-    std::snprintf(tol, sizeof tol, "%.3g", eo.tolerance);
+    write_matrices();
     std::cerr << "   scipy eigsh ...\n";
     const ChildResult c =
         run_child({"/usr/bin/python3", o.scipy_script.string(), (dir / "K.mtx").string(), (dir / "M.mtx").string(),
@@ -428,25 +507,30 @@ std::string fmt_e(double v) {
 
 void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& out) {
   const char* threads = std::getenv("OPENBLAS_NUM_THREADS");
-  out << "\n### Clamped 1 m x 1 m x 10 mm steel plate, MITC4, " << o.modes << " modes, block size "
-      << (o.block > 0 ? std::to_string(o.block) : std::string("automatic")) << ", rigflex times best of "
-      << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset") << "\n\n";
+  out << "\n### "
+      << (o.model == "plate" ? std::string("Clamped 1 m x 1 m x 10 mm steel plate, MITC4")
+                             : "Model " + o.model + " (bench/bench_models.hpp)")
+      << ", " << o.modes << " modes, block size " << (o.block > 0 ? std::to_string(o.block) : std::string("automatic"))
+      << ", rigflex times best of " << o.repeat << ", OPENBLAS_NUM_THREADS " << (threads ? threads : "unset") << "\n\n";
   out << "| DOFs | n x n | block | assembly s | factor s | eigen s | floor s | eigen/floor | ccx s | ccx/rigflex | "
                "scipy s | scipy/rigflex | peak RSS MB | eigen peak MB | factor MB | eigen peak/factor | max residual |\n";
   out << "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const Row& r : rows) {
     const double total = r.assembly + r.eigen;
-    out << "| " << r.dofs << " | " << r.n << "x" << r.n << " | " << r.block << " | " << fmt(r.assembly) << " | "
-        << fmt(r.factor)
-              << " | " << fmt(r.eigen) << " | " << fmt(r.floor()) << " | " << fmt(r.eigen / r.floor()) << " | "
-              << (r.ccx_s ? fmt(*r.ccx_s, 1) : r.ccx_note.empty() ? "-" : r.ccx_note) << " | "
-              << (r.ccx_s ? fmt(*r.ccx_s / total, 1) : "-") << " | "
-              << (r.scipy_s ? fmt(*r.scipy_s, 1) : r.scipy_note.empty() ? "-" : r.scipy_note) << " | "
-              << (r.scipy_s ? fmt(*r.scipy_s / r.eigen, 1) : "-") << " | " << fmt(r.peak_mb, 0)
-              << (r.peak_reset ? "" : " (not reset)") << " | " << fmt(r.eigen_peak_mb - r.eigen_base_mb, 0)
-              << " | " << fmt(r.factor_mb, 0) << " | " << fmt((r.eigen_peak_mb - r.eigen_base_mb) / r.factor_mb)
-              << " | "
-              << fmt_e(r.max_residual) << " |\n";
+    out << "| " << r.dofs << " | " << (r.n ? std::to_string(r.n) + "x" + std::to_string(r.n) : o.model) << " | "
+        << r.block << " | " << fmt(r.assembly) << " | " << fmt(r.factor) << " | " << fmt(r.eigen) << " | "
+        << fmt(r.floor()) << " | " << fmt(r.eigen / r.floor()) << " | "
+        << (r.ccx_s              ? fmt(*r.ccx_s, 1)
+            : r.ccx_note.empty() ? "-"
+                                 : r.ccx_note)
+        << " | " << (r.ccx_s ? fmt(*r.ccx_s / total, 1) : "-") << " | "
+        << (r.scipy_s              ? fmt(*r.scipy_s, 1)
+            : r.scipy_note.empty() ? "-"
+                                   : r.scipy_note)
+        << " | " << (r.scipy_s ? fmt(*r.scipy_s / r.eigen, 1) : "-") << " | " << fmt(r.peak_mb, 0)
+        << (r.peak_reset ? "" : " (not reset)") << " | " << fmt(r.eigen_peak_mb - r.eigen_base_mb, 0) << " | "
+        << fmt(r.factor_mb, 0) << " | " << fmt((r.eigen_peak_mb - r.eigen_base_mb) / r.factor_mb) << " | "
+        << fmt_e(r.max_residual) << " |\n";
   }
   out << "\n| DOFs | base RSS MB | assembly peak MB | RSS before eigen MB | mesh s | floor factor s | floor solves s | op. applications | restarts | converged | "
                "M-orth. error | ccx equations | ccx peak RSS MB | ccx max df/f | scipy peak RSS MB | scipy max df/f "
@@ -461,6 +545,29 @@ void print_tables(const std::vector<Row>& rows, const Options& o, std::ostream& 
               << " | " << (r.scipy_rss_mb ? fmt(*r.scipy_rss_mb, 0) : "-") << " | "
               << (r.scipy_diff ? fmt_e(*r.scipy_diff) : "-") << " | "
               << (r.scipy_residual ? fmt_e(*r.scipy_residual) : "-") << " | " << r.load << " |\n";
+  }
+  bool any_slepc = false;
+  for (const Row& r : rows) any_slepc = any_slepc || !r.slepc.empty();
+  if (any_slepc) {
+    out << "\n| DOFs | SLEPc Krylov-Schur with | ranks | factor s | iteration s | eigen s | solves | rigflex eigen s | "
+           "SLEPc / rigflex | rigflex floor s | max df/f | max residual | peak RSS MB, largest rank | all ranks |\n";
+    out << "|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    for (const Row& r : rows)
+      for (const Row::Slepc& s : r.slepc) {
+        out << "| " << r.dofs << " | " << s.solver << " | " << s.ranks << " | ";
+        if (!s.note.empty()) {
+          out << s.note << " | | | | " << fmt(r.eigen) << " | | " << fmt(r.floor()) << " | | | | |\n";
+          continue;
+        }
+        out << fmt(s.setup) << " | " << fmt(s.solve) << " | " << fmt(s.eigen) << " | " << s.solves << " | "
+            << fmt(r.eigen) << " | " << fmt(s.eigen / r.eigen) << " | " << fmt(r.floor()) << " | " << fmt_e(s.diff)
+            << " | " << fmt_e(s.residual) << " | " << fmt(s.rss_max_rank, 0) << " | " << fmt(s.rss_all, 0) << " |\n";
+      }
+    out << "\nSLEPc: bench/slepc_eigs under mpiexec on the K.mtx and M.mtx above, rigflex's shift and tolerance, "
+           "the same number of modes; factor = EPSSetUp (the factorization of K - sigma M), iteration = EPSSolve, "
+           "eigen = both (reading the files excluded); solves = right-hand sides solved. SLEPc / rigflex = SLEPc's "
+           "eigen over rigflex's eigen (> 1: rigflex faster). Peak RSS = VmHWM of each rank, which holds the whole "
+           "K and M as read (as the command line's ranks each hold the assembled model).\n";
   }
   out << "\nfloor = factorize_shifted(K, M, sigma) + the solves of the Lanczos on a fresh factor: (operator "
          "applications - converged) / block solves of `block` column(s), one of `converged` columns (the "
@@ -494,6 +601,9 @@ void warm_up() {
 int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
+    // mpiexec for the SLEPc peer: Open MPI refuses root without these.
+    setenv("OMPI_ALLOW_RUN_AS_ROOT", "1", 0);
+    setenv("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1", 0);
     warm_up();
     std::vector<Row> rows;
     for (long size : o.sizes) {

@@ -203,6 +203,11 @@ EigenResult solve_lanczos(const SpMat& K, const SpMat& M, const EigenOptions& op
 // eigenvalues of a singular M). shift must lie below the lowest eigenvalue.
 EigenResult solve_dense(const Eigen::MatrixXd& K, const Eigen::MatrixXd& M, int count, double shift);
 
+// A solver of K x = lambda M x under EigenOptions, where callers let the
+// user choose one: empty means solve_lanczos; the MPI backend
+// (linalg/slepc_eigen.hpp, slepc_backend) plugs in here.
+using EigenBackend = std::function<EigenResult(const SpMat& K, const SpMat& M, const EigenOptions& options)>;
+
 // Computes r.residuals and r.orthogonality_error from K, M and the pairs in
 // r, independently of the solver that produced them.
 void check_eigenpairs(const SpMat& K, const SpMat& M, EigenResult& r);

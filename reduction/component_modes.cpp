@@ -87,14 +87,17 @@ linalg::EigenResult fixed_interface_modes(const linalg::SpMat& Kii, const linalg
   eo.tolerance = o.tolerance;
   eo.progress = o.progress;
   const int n = static_cast<int>(std::min<Eigen::Index>(Kii.rows(), 1 << 30));
+  const auto solve = [&] {
+    return o.eigen_backend ? o.eigen_backend(Kii, Mii, eo) : solve_lanczos(Kii, Mii, eo, factor);
+  };
   if (!o.cutoff_hz) {
     eo.count = o.modes;
-    return solve_lanczos(Kii, Mii, eo, factor);
+    return solve();
   }
   const double cutoff = std::pow(2 * M_PI * *o.cutoff_hz, 2);
   eo.count = std::min(kCutoffFirstCount, n);
   for (;;) {
-    linalg::EigenResult r = solve_lanczos(Kii, Mii, eo, factor);
+    linalg::EigenResult r = solve();
     const bool passed = r.converged_count > 0 && r.eigenvalues(r.converged_count - 1) > cutoff;
     if (!r.converged || passed || eo.count == n) {
       if (!r.converged) return r;

@@ -41,6 +41,10 @@ struct ComponentModeOptions {
   // `analyzed` (optional) hears that analysis before the numeric work.
   double max_factor_bytes = 0;
   std::function<void(const linalg::FactorStatistics&)> analyzed;
+  // Craig-Bampton's fixed-interface modes by another solver (empty: the
+  // built-in Lanczos on the factorization of K_ii that the constraint modes
+  // use; the MPI backend factorizes K_ii again, distributed).
+  linalg::EigenBackend eigen_backend;
 
   // Throws std::invalid_argument naming the option: negative or missing mode
   // count, both count and cutoff, more modes than interior DOFs, cutoff <= 0.

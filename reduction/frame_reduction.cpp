@@ -162,7 +162,7 @@ FullModes full_model_modes(const fe::AssembledSystem& sys, FrameSupport support,
   eo.max_factor_bytes = o.max_factor_bytes;
   eo.analyzed = o.analyzed;
   FullModes f;
-  f.result = solve_lanczos(sys.K, sys.M, eo);
+  f.result = o.eigen_backend ? o.eigen_backend(sys.K, sys.M, eo) : solve_lanczos(sys.K, sys.M, eo);
   if (f.result.over_memory_limit) {
     ReductionError e("full-model modes: " + f.result.message);
     e.over_memory_limit = true;
@@ -345,6 +345,7 @@ ReducedFrame reduce_frame(const fe::Model& model, const FrameReductionOptions& o
   co.cutoff_hz = o.cutoff_hz;
   co.max_factor_bytes = o.max_factor_bytes;
   co.analyzed = o.analyzed;
+  co.eigen_backend = o.eigen_backend;
   ReducedMatrices red = reduce_component(sys.K, sys.M, boundary, co);
   if (!red.ok) {
     std::vector<std::string> names;

@@ -40,6 +40,11 @@ struct FrameReductionOptions {
   // hears each analysis before its numeric work.
   double max_factor_bytes = 0;
   std::function<void(const linalg::FactorStatistics&)> analyzed;
+  // The eigen solver of the full model's modes and Craig-Bampton's
+  // fixed-interface modes (empty: the built-in Lanczos; the MPI backend of
+  // linalg/slepc_eigen.hpp with its vectors gathered on every rank, since
+  // the checks use them). The constraint modes stay with CHOLMOD.
+  linalg::EigenBackend eigen_backend;
 
   // Throws std::invalid_argument naming the option: zeta outside (0, 1), mode
   // indices < 1 or equal, check_modes < 1, reference_node without that

@@ -22,7 +22,9 @@ struct ModalAnalysis {
 // Never throws for numerical outcomes: check result.converged and mechanism.
 // Throws fe::ModelError for an invalid model and std::invalid_argument for
 // invalid options.
+// `backend`: the eigen solver (empty: solve_lanczos; the MPI backend of
+// linalg/slepc_eigen.hpp, collective, on every rank).
 ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOptions& options,
-                                 const fe::AssemblyOptions& assembly = {});
+                                 const fe::AssemblyOptions& assembly = {}, const linalg::EigenBackend& backend = {});
 
 }  // namespace rigflex::reduction

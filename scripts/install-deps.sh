@@ -2,8 +2,9 @@
 # Installs rigflex's dependencies from Debian 12 packages.
 #   install-deps.sh        what the build, the tests and the benchmarks need
 #                          (GoogleTest, Google Benchmark and the tests'
-#                          oracles: CalculiX, SciPy, headless Chromium), and
-#                          the Python module's (pybind11, pytest, matplotlib)
+#                          oracles: CalculiX, SciPy, headless Chromium), the
+#                          Python module's (pybind11, pytest, matplotlib) and
+#                          the MPI eigen backend's (SLEPc, PETSc, Open MPI)
 #   install-deps.sh demo   what building rigflex and running it needs (the
 #                          demo: scripts/demo.sh builds without tests)
 # Idempotent: packages already present are skipped by apt; safe to re-run.
@@ -27,6 +28,7 @@ if [ "$profile" = all ]; then
     calculix-ccx python3-scipy python3-numpy
     chromium
     pybind11-dev python3-dev python3-pytest python3-matplotlib
+    slepc-dev petsc-dev libopenmpi-dev openmpi-bin
   )
 fi
 # npm fetches the plotting library of the HTML reports (third_party/js). A
