@@ -34,7 +34,7 @@ BackendRun::BackendRun(const BackendArgs& args, bool gather_on_every_rank) : dir
   linalg::SlepcOptions base;
   base.direct_solver = linalg::parse_slepc_direct_solver(args.direct_solver);
   base.gather = gather_on_every_rank ? linalg::SlepcGather::all : linalg::SlepcGather::root;
-  base.validate(base.count, ranks_);  // the direct solver against the ranks, before any work
+  base.validate_direct_solver(ranks_);  // before any work
   backend_ = linalg::slepc_backend(base);
 #else
   (void)gather_on_every_rank;

@@ -32,7 +32,6 @@ class BackendRun {
 
   linalg::EigenBackend backend() const { return backend_; }  // empty: the built-in Lanczos
   bool root() const { return rank_ == 0; }
-  int ranks() const { return ranks_; }
   bool builtin() const { return !backend_; }
   std::string describe() const;  // "SLEPc Krylov-Schur, shift-invert, MUMPS on 2 MPI ranks"
 

@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <numeric>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -172,43 +171,37 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// x gathered where SlepcGather says, into `column` on the ranks that hold
-// it (whose size is the whole vector's; 0 elsewhere).
-void gather(Vec x, SlepcGather where, Eigen::Ref<Eigen::VectorXd> column) {
-  OwnedScatter scatter;
-  OwnedVec whole;
-  if (where == SlepcGather::all)
-    check(VecScatterCreateToAll(x, &scatter.object, &whole.object), "VecScatterCreateToAll");
-  else
-    check(VecScatterCreateToZero(x, &scatter.object, &whole.object), "VecScatterCreateToZero");
-  check(VecScatterBegin(scatter.object, x, whole.object, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check(VecScatterEnd(scatter.object, x, whole.object, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  PetscInt held = 0;
-  check(VecGetLocalSize(whole.object, &held), "VecGetLocalSize");
-  if (held != column.size())
-    throw PetscFailure("gathered " + std::to_string(held) + " values where " + std::to_string(column.size()) +
-                       " were expected");
-  if (held == 0) return;
-  const PetscScalar* values = nullptr;
-  check(VecGetArrayRead(whole.object, &values), "VecGetArrayRead");
-  std::copy(values, values + held, column.data());
-  check(VecRestoreArrayRead(whole.object, &values), "VecRestoreArrayRead");
-}
-
-void sort_ascending(EigenResult& r) {
-  std::vector<Eigen::Index> order(static_cast<size_t>(r.eigenvalues.size()));
-  std::iota(order.begin(), order.end(), Eigen::Index{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](Eigen::Index a, Eigen::Index b) { return r.eigenvalues[a] < r.eigenvalues[b]; });
-  Eigen::VectorXd values(r.eigenvalues.size());
-  Eigen::MatrixXd vectors(r.vectors.rows(), r.vectors.cols());
-  for (size_t k = 0; k < order.size(); ++k) {
-    values[static_cast<Eigen::Index>(k)] = r.eigenvalues[order[k]];
-    if (r.vectors.cols() > 0) vectors.col(static_cast<Eigen::Index>(k)) = r.vectors.col(order[k]);
+// The eigenvectors gathered where SlepcGather says: one scatter, built for
+// the layout of the first vector and reused for every one (all share it).
+class Gatherer {
+ public:
+  Gatherer(Vec layout, SlepcGather where) {
+    if (where == SlepcGather::all)
+      check(VecScatterCreateToAll(layout, &scatter_.object, &whole_.object), "VecScatterCreateToAll");
+    else
+      check(VecScatterCreateToZero(layout, &scatter_.object, &whole_.object), "VecScatterCreateToZero");
   }
-  r.eigenvalues = std::move(values);
-  r.vectors = std::move(vectors);
-}
+  // x into `column` on the ranks that hold it (whose size is the whole
+  // vector's; 0 elsewhere).
+  void operator()(Vec x, Eigen::Ref<Eigen::VectorXd> column) {
+    check(VecScatterBegin(scatter_.object, x, whole_.object, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(scatter_.object, x, whole_.object, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    PetscInt held = 0;
+    check(VecGetLocalSize(whole_.object, &held), "VecGetLocalSize");
+    if (held != column.size())
+      throw PetscFailure("gathered " + std::to_string(held) + " values where " + std::to_string(column.size()) +
+                         " were expected");
+    if (held == 0) return;
+    const PetscScalar* values = nullptr;
+    check(VecGetArrayRead(whole_.object, &values), "VecGetArrayRead");
+    std::copy(values, values + held, column.data());
+    check(VecRestoreArrayRead(whole_.object, &values), "VecRestoreArrayRead");
+  }
+
+ private:
+  OwnedScatter scatter_;
+  OwnedVec whole_;
+};
 
 void solve(const SpMat& K, const SpMat& M, const SlepcOptions& options, EigenResult& r) {
   const PetscInt n = static_cast<PetscInt>(K.rows());
@@ -220,13 +213,12 @@ void solve(const SpMat& K, const SpMat& M, const SlepcOptions& options, EigenRes
   check(EPSCreate(PETSC_COMM_WORLD, &eps.object), "EPSCreate");
   check(EPSSetOperators(eps.object, k.object, m.object), "EPSSetOperators");
   configure(eps.object, options, r.shift);
-  MonitorContext monitor{&options, nullptr};
-  if (options.progress) {
-    ST st = nullptr;
-    check(EPSGetST(eps.object, &st), "EPSGetST");
-    check(STGetKSP(st, &monitor.ksp), "STGetKSP");
-    check(EPSMonitorSet(eps.object, report_progress, &monitor, nullptr), "EPSMonitorSet");
-  }
+  ST st = nullptr;
+  KSP ksp = nullptr;
+  check(EPSGetST(eps.object, &st), "EPSGetST");
+  check(STGetKSP(st, &ksp), "STGetKSP");
+  MonitorContext monitor{&options, ksp};
+  if (options.progress) check(EPSMonitorSet(eps.object, report_progress, &monitor, nullptr), "EPSMonitorSet");
 
   // EPSSetUp factorizes K - sigma M; EPSSolve iterates on the factor.
   auto start = std::chrono::steady_clock::now();
@@ -240,10 +232,6 @@ void solve(const SpMat& K, const SpMat& M, const SlepcOptions& options, EigenRes
   check(EPSGetConverged(eps.object, &converged), "EPSGetConverged");
   check(EPSGetIterationNumber(eps.object, &iterations), "EPSGetIterationNumber");
   r.restarts = static_cast<int>(iterations);
-  ST st = nullptr;
-  KSP ksp = nullptr;
-  check(EPSGetST(eps.object, &st), "EPSGetST");
-  check(STGetKSP(st, &ksp), "STGetKSP");
   PetscInt solves = 0;
   check(KSPGetTotalIterations(ksp, &solves), "KSPGetTotalIterations");
   r.operator_applications = static_cast<long>(solves);  // preonly: one iteration per solve
@@ -256,12 +244,13 @@ void solve(const SpMat& K, const SpMat& M, const SlepcOptions& options, EigenRes
   r.vectors.resize(holds_vectors ? K.rows() : 0, holds_vectors ? take : 0);
   OwnedVec x;
   check(MatCreateVecs(k.object, &x.object, nullptr), "MatCreateVecs");
+  Gatherer gather(x.object, options.gather);
   Eigen::VectorXd column(holds_vectors ? K.rows() : 0);
   for (PetscInt i = 0; i < take; ++i) {
     PetscScalar value = 0;
     check(EPSGetEigenpair(eps.object, i, &value, nullptr, x.object, nullptr), "EPSGetEigenpair");
     r.eigenvalues[i] = PetscRealPart(value);
-    gather(x.object, options.gather, column);
+    gather(x.object, column);
     if (holds_vectors) r.vectors.col(i) = column;
   }
   r.converged_count = static_cast<int>(take);
@@ -318,6 +307,10 @@ void SlepcOptions::validate(Eigen::Index n, int ranks) const {
     throw std::invalid_argument("subspace " + std::to_string(subspace) + " must exceed count " + std::to_string(count) +
                                 " and not exceed the " + std::to_string(n) + " DOFs");
   if (max_iterations < 0) throw std::invalid_argument("max_iterations must not be negative");
+  validate_direct_solver(ranks);
+}
+
+void SlepcOptions::validate_direct_solver(int ranks) const {
   if (ranks > 1 && direct_solver != SlepcDirectSolver::mumps)
     throw std::invalid_argument(std::string("direct solver ") + to_string(direct_solver) +
                                 " runs on one rank only; with " + std::to_string(ranks) + " ranks use mumps");
@@ -342,7 +335,6 @@ EigenResult solve_slepc(const SpMat& K, const SpMat& M, const SlepcOptions& opti
     r.converged_count = 0;
     return r;
   }
-  sort_ascending(r);
   // Rayleigh-Ritz in the span of SLEPc's vectors, as the built-in solver
   // ends: SLEPc's purified vectors of a cluster (a floating frame's six
   // rigid-body modes) are M-orthogonal only to ~1e-8; the Ritz vectors are

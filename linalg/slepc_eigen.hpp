@@ -67,6 +67,8 @@ struct SlepcOptions {
   // Throws std::invalid_argument naming the offending option. `ranks`: the
   // solvers that run on one rank only are refused on more.
   void validate(Eigen::Index n, int ranks) const;
+  // The part of validate that needs no problem: the direct solver on `ranks`.
+  void validate_direct_solver(int ranks) const;
 };
 
 // Lowest options.count eigenpairs of (K, M). Collective: every rank of
