@@ -205,8 +205,9 @@ void add_modes_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--count", args->count, "number of modes (lowest first)")->check(positive());
   cmd->add_option("--out", args->out, "folder for modes.json, modes.pvd and mode_NNN.vtu");
   cmd->add_option("--shift-hz", args->shift_hz, "spectral shift as a frequency: sigma = -(2 pi f)^2");
-  cmd->add_option("--block", args->block,
-                  "Lanczos block size; 0 (default): chosen from the fill of the factor, see docs/eigen-solver.md")
+  cmd->add_option(
+         "--block", args->block,
+         "Lanczos block size; 0 (default): chosen from the size of the factor and basis, see docs/eigen-solver.md")
       ->check(non_negative());
   cmd->add_option("--subspace", args->subspace,
                   "Lanczos basis size; 0 (default): max(2 count, count + 20, count + 2 block)")

@@ -8,19 +8,22 @@
 // beam ladder (banded, the lightest) -- the program solves the same
 // eigenproblem with each block size asked for, keeps the best wall time of
 // --repeat runs of solve_lanczos (factorization, iteration, Rayleigh-Ritz and
-// check: what a user waits for) and prints a table: the fill measure the
-// automatic rule reads, the time per block size, the fastest, the automatic
-// choice and its time over the fastest. One OpenBLAS thread (set
-// OPENBLAS_NUM_THREADS=1 as bench/run_plate_bench.sh does) keeps the
-// factorizations comparable on a shared machine.
+// check: what a user waits for) and prints a table: the words one
+// application streams (nnz(L) + n x basis, what the automatic rule reads),
+// the time per block size, the fastest, the automatic choice and its time
+// over the fastest. One OpenBLAS thread (set OPENBLAS_NUM_THREADS=1 as
+// bench/run_plate_bench.sh does) keeps the factorizations comparable on a
+// shared machine. --no-verify turns the multiplicity check off, to measure
+// what it costs.
 //
 // Sample run (2 cores, shared):
-//   OPENBLAS_NUM_THREADS=1 build/bench/bench_block_size --models plate:10k,quad8:30k --repeat 1
-//   | model | DOFs | nnz(L)/n | basis | fill ratio | block 1 s | block 4 s | fastest | automatic | automatic/fastest |
-//   | plate:10k | 10086 | 65 | 40 | 1.62 | 0.17 | 0.19 | 1 | 1 | 1.00 |
-//   | quad8:30k | 29280 | 114 | 40 | 2.85 | 1.08 | 0.92 | 4 | 4 | 1.00 |
+//   OPENBLAS_NUM_THREADS=1 build/bench/bench_block_size --models plate:10k,plate:30k --repeat 3
+//   | model | DOFs | nnz(L)/n | basis | words per application, M | block 1 s | block 4 s | fastest | automatic |
+//   automatic/fastest | | plate:10k | 10086 | 65 | 40 | 1.06 | 0.18 | 0.27 | 1 | 1 | 1.00 | | plate:30k | 30246 | 81 |
+//   40 | 3.66 | 1.33 | 0.94 | 4 | 4 | 1.00 |
 //
-// Usage: bench_block_size [--models kind:size,...] [--blocks 1,4] [--modes 20] [--repeat 2]
+// Usage: bench_block_size [--models kind:size,...] [--blocks 1,4] [--modes 20] [--repeat 2] [--subspace M]
+//                         [--no-verify]
 //   kinds: plate (MITC4), quad8 (8-node shells), girder (MITC4 box girder), lattice (3D beam lattice),
 //          ladder (beam ladder)
 #include <algorithm>
@@ -55,6 +58,7 @@ struct Options {
   int modes = 20;
   int repeat = 2;
   int subspace = 0;  // 0: the solver's automatic basis
+  bool verify = true;
 };
 
 Options parse(int argc, char** argv) {
@@ -68,6 +72,8 @@ Options parse(int argc, char** argv) {
     } else if (a == "--modes") o.modes = std::stoi(bench::option_value(argc, argv, i));
     else if (a == "--repeat") o.repeat = std::stoi(bench::option_value(argc, argv, i));
     else if (a == "--subspace") o.subspace = std::stoi(bench::option_value(argc, argv, i));
+    else if (a == "--no-verify")
+      o.verify = false;
     else throw std::invalid_argument("unknown option " + a);
   }
   if (o.blocks.empty() || o.repeat < 1 || o.modes < 1) throw std::invalid_argument("nothing to run");
@@ -87,7 +93,7 @@ std::string fmt(double v, int digits) {
 int main(int argc, char** argv) try {
   const Options o = parse(argc, argv);
   std::ostringstream table;
-  table << "| model | DOFs | nnz(L)/n | basis | fill ratio |";
+  table << "| model | DOFs | nnz(L)/n | basis | words per application, M |";
   for (int b : o.blocks) table << " block " << b << " s |";
   table << " fastest | automatic | automatic/fastest |\n|---|---:|---:|---:|---:|";
   for (size_t i = 0; i < o.blocks.size(); ++i) table << "---:|";
@@ -103,12 +109,13 @@ int main(int argc, char** argv) try {
     eo.count = o.modes;
     eo.method = linalg::EigenMethod::lanczos;
     eo.subspace = o.subspace;
+    eo.verify_multiplicities = o.verify;
     linalg::SparseCholesky probe;
     const linalg::PencilFactorization pencil = linalg::factorize_pencil(sys.K, sys.M, std::nullopt, probe);
     if (!pencil.ok) throw std::runtime_error(spec + ": " + pencil.message);
     const double nnz = probe.statistics().factor_nnz;
     const int automatic = linalg::automatic_block_size(n, nnz, eo.count);
-    const double ratio = linalg::block_fill_ratio(n, nnz, eo.count);
+    const double words = linalg::application_words(n, nnz, eo.count);
 
     std::vector<double> best(o.blocks.size(), 0);
     for (int rep = 0; rep < o.repeat; ++rep)
@@ -127,7 +134,7 @@ int main(int argc, char** argv) try {
     const size_t fastest = static_cast<size_t>(std::min_element(best.begin(), best.end()) - best.begin());
     const auto chosen = std::find(o.blocks.begin(), o.blocks.end(), automatic);
     table << "| " << spec << " | " << n << " | " << fmt(nnz / static_cast<double>(n), 0) << " | "
-          << eo.resolved_subspace(n, 1) << " | " << fmt(ratio, 2) << " |";
+          << eo.resolved_subspace(n, 1) << " | " << fmt(words / 1e6, 2) << " |";
     for (double t : best) table << " " << fmt(t, 2) << " |";
     table << " " << o.blocks[fastest] << " | " << automatic << " | "
           << (chosen == o.blocks.end() ? std::string("not run")

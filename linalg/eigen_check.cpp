@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "linalg/block_kernels.hpp"
 #include "linalg/eigen_solver.hpp"
 
 namespace rigflex::linalg {
@@ -26,8 +27,12 @@ void check_eigenpairs(const SpMat& K, const SpMat& M, EigenResult& r) {
   r.backward_errors.resize(k);
   r.orthogonality_error = 0.0;
   if (k == 0) return;
-  const Eigen::MatrixXd KX = K * X;
-  const Eigen::MatrixXd MX = M * X;
+  // The block kernel sweeps K once per 8 columns where Eigen's product
+  // sweeps it once per column (2-3x slower at 20 vectors); it reads K's
+  // columns as rows, which is K X for the symmetric K and M of the pencil.
+  Eigen::MatrixXd KX(X.rows(), k), MX(X.rows(), k);
+  detail::symmetric_times(K, X, KX);
+  detail::symmetric_times(M, X, MX);
   const double k_norm = one_norm(K), m_norm = one_norm(M);
   for (Eigen::Index i = 0; i < k; ++i) {
     const double scale = std::max(KX.col(i).norm(), k_norm * X.col(i).norm() * 1e-14);

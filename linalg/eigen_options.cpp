@@ -54,17 +54,16 @@ int EigenOptions::resolved_subspace(Eigen::Index n, int block) const {
   return static_cast<int>(std::max<long>(std::min<long>(automatic, n), count + block));
 }
 
-double block_fill_ratio(Eigen::Index n, double factor_nnz, int count) {
+double application_words(Eigen::Index n, double factor_nnz, int count) {
   EigenOptions single;
   single.count = count;
   const double basis = single.resolved_subspace(n, 1);
-  return factor_nnz / (static_cast<double>(n) * basis);
+  return factor_nnz + static_cast<double>(n) * basis;
 }
 
 int automatic_block_size(Eigen::Index n, double factor_nnz, int count) {
   if (n < 8L * kAutomaticBlock) return 1;
-  const double ratio = block_fill_ratio(n, factor_nnz, count);
-  return ratio >= kAutomaticBlockFillRatio && ratio < kAutomaticBlockFillRatioEnd ? kAutomaticBlock : 1;
+  return application_words(n, factor_nnz, count) >= kAutomaticBlockWords ? kAutomaticBlock : 1;
 }
 
 Eigen::VectorXd EigenResult::frequencies_hz() const {

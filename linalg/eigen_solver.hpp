@@ -46,7 +46,7 @@ struct EigenOptions {
   int max_restarts = 200;
   unsigned seed = 1;   // deterministic start vectors
   // 1: single-vector Lanczos; > 1: block Lanczos, one multi-RHS solve per
-  // block; 0: automatic, from the fill of the factor (automatic_block_size).
+  // block; 0: automatic, from the size of the factor and basis (automatic_block_size).
   int block_size = 0;
   // After convergence, restart once from a fresh random block orthogonal to
   // the converged vectors and confirm that no eigenvalue below the highest
@@ -158,21 +158,20 @@ double default_shift(const SpMat& K, const SpMat& M);
 
 // Automatic block size (EigenOptions::block_size = 0). A block of b vectors
 // costs one b-column solve, which reads the factor L once for all b columns
-// (a 4-column solve cost 1.8 single ones on a 100k-DOF plate), but the block
-// iteration needs more applications (1.5x on plates, 1.7-2.3x on spectra
-// with many close modes: a ladder, a box girder, a 3D lattice) and each application also
-// costs orthogonalization against the basis, ~ n x basis. The rule reads the
-// fill ratio nnz(L) / (n x basis), basis that of the single-vector iteration
-// for `count` pairs, and takes 4 inside a band measured by
-// bench/bench_block_size (docs/eigen-solver.md): below it (beam frames,
-// small shell meshes) the solves are too cheap to pay for the extra
-// applications; above it (3D fill) the extra applications of the clustered
-// spectra such models have outweighed the cheaper solves. Deterministic: it
-// depends on the factor's structure only, never on timings.
-inline constexpr double kAutomaticBlockFillRatio = 2.2;     // from here ...
-inline constexpr double kAutomaticBlockFillRatioEnd = 6.0;  // ... to below here
+// (a 4-column solve cost 1.8 single ones on a 100k-DOF plate), and its
+// Gram-Schmidt reads the basis once for all b; but the block iteration needs
+// more applications (1.3x on plates and ladders, 1.4x on a box girder,
+// 1.7-1.9x on a 3D lattice, measured by bench/bench_block_size,
+// docs/eigen-solver.md). Where the factor and the basis are too large for
+// the caches, each pass over them is bound by memory bandwidth and reading
+// them once per four columns wins; where they fit, the extra applications
+// cost more. The rule reads the words one application streams, nnz(L) +
+// n x basis (basis that of the single-vector iteration for `count` pairs),
+// and takes 4 from kAutomaticBlockWords up. Deterministic: it depends on the
+// factor's structure only, never on timings.
+inline constexpr double kAutomaticBlockWords = 3e6;
 inline constexpr int kAutomaticBlock = 4;
-double block_fill_ratio(Eigen::Index n, double factor_nnz, int count);
+double application_words(Eigen::Index n, double factor_nnz, int count);
 int automatic_block_size(Eigen::Index n, double factor_nnz, int count);
 
 // Factorization of K - sigma M for the Lanczos, with the checks above.

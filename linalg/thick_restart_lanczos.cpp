@@ -28,6 +28,8 @@
 // locked pairs: a single Krylov sequence sees one direction per distinct
 // eigenvalue, and rounding alone does not reliably supply the other copies
 // of a repeated one (a 7-fold eigenvalue came out with 4 copies without it).
+// A block of b random vectors does supply up to b copies: where every wanted
+// eigenvalue has fewer than b converged copies, the check is skipped.
 #include "linalg/thick_restart_lanczos.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -68,6 +70,12 @@ constexpr double kMissedEigenvalueGrowth = 1e-8;
 // In the multiplicity check, the best new Ritz value is resolved when its
 // residual is below this fraction of its distance to the lowest wanted one.
 constexpr double kResolvedGapFraction = 0.1;
+// Converged Ritz values this close (relative) count as copies of one
+// eigenvalue when deciding whether the block saw all of them (see
+// block_saw_every_copy). Copies converge to ~tolerance of each other; the
+// width is far wider, so that a nearly repeated eigenvalue, whose copies a
+// Krylov space separates only slowly, is treated as repeated: the safe side.
+constexpr double kCopyWidth = 1e-6;
 // Rounding in a Lanczos step is ~eps * ||Op v||, and so is the accuracy of
 // the eigendecomposition of H, ~eps * ||H||. While pairs with a theta far
 // above the lowest wanted one are active (rigid-body modes at a tiny shift:
@@ -135,6 +143,7 @@ class ThickRestartLanczos {
   void restart(const RitzPairs& ritz, Index keep);
   void thick_restart(const RitzPairs& ritz);
   void lock_and_refresh(const RitzPairs& ritz, Index keep);
+  bool block_saw_every_copy(const RitzPairs& ritz) const;
   Check check_multiplicities(const RitzPairs& ritz);
   LanczosOutcome finish(const RitzPairs& ritz, Index pairs, bool converged, std::string message);
   void report(Index converged) const;
@@ -496,6 +505,26 @@ void ThickRestartLanczos::advance() {
   }
 }
 
+// Whether the block iteration has already seen every copy of each wanted
+// eigenvalue, so that the multiplicity check would only confirm it: a block
+// Krylov space from b random vectors holds min(m, b) independent directions
+// of an eigenspace of dimension m (the projections of the b start vectors,
+// and of every fresh random block after a lock, onto it), so where every
+// wanted eigenvalue shows fewer than b converged copies, m equals that count.
+// A copy count that reaches b may hide more: check. Never true for b = 1.
+bool ThickRestartLanczos::block_saw_every_copy(const RitzPairs& ritz) const {
+  for (Index i = 0; i < s_.count; ++i) {
+    Index copies = 0;
+    for (Index j = 0; j < ritz.theta.size(); ++j) {
+      if (converged(ritz, j) && std::abs(ritz.theta[j] - ritz.theta[i]) <= kCopyWidth * std::abs(ritz.theta[i])) {
+        ++copies;
+      }
+    }
+    if (copies >= s_.block) return false;
+  }
+  return true;
+}
+
 // The multiplicity check: after convergence, lock the wanted pairs and run
 // on from a fresh random block. A copy of a repeated eigenvalue that the
 // Krylov space missed (a single start vector spans one direction per
@@ -503,6 +532,7 @@ void ThickRestartLanczos::advance() {
 // one; the round ends once the best new Ritz value is resolved.
 ThickRestartLanczos::Check ThickRestartLanczos::check_multiplicities(const RitzPairs& ritz) {
   const Index c = s_.count;
+  if (!verifying_ && block_saw_every_copy(ritz)) return Check::confirmed;
   if (verifying_) {
     if (p_ <= c) return Check::pending;
     const double gap = ritz.theta[c - 1] - ritz.theta[c];

@@ -67,17 +67,16 @@ TEST(EigenOptions, ResolvedSubspace) {
   EXPECT_EQ(o.resolved_subspace(8, 4), 40);
 }
 
-TEST(EigenOptions, AutomaticBlockSizeFollowsTheFillRatio) {
+TEST(EigenOptions, AutomaticBlockSizeFollowsTheWordsAnApplicationStreams) {
   EXPECT_EQ(EigenOptions{}.block_size, 0);  // automatic by default
-  // count 20: basis 40, so the ratio is nnz(L) / (40 n).
-  const Eigen::Index n = 100000;
-  EXPECT_DOUBLE_EQ(block_fill_ratio(n, 40.0 * n * 1.5, 20), 1.5);
-  const double threshold_nnz = kAutomaticBlockFillRatio * 40.0 * n;
+  // count 20: basis 40, so an application streams nnz(L) + 40 n words.
+  const Eigen::Index n = 50000;
+  EXPECT_DOUBLE_EQ(application_words(n, 1e6, 20), 1e6 + 40.0 * n);
+  const double threshold_nnz = kAutomaticBlockWords - 40.0 * n;
   EXPECT_EQ(automatic_block_size(n, 0.99 * threshold_nnz, 20), 1);
   EXPECT_EQ(automatic_block_size(n, 1.01 * threshold_nnz, 20), kAutomaticBlock);
-  const double end_nnz = kAutomaticBlockFillRatioEnd * 40.0 * n;
-  EXPECT_EQ(automatic_block_size(n, 0.99 * end_nnz, 20), kAutomaticBlock);
-  EXPECT_EQ(automatic_block_size(n, 1.01 * end_nnz, 20), 1);
+  // A large basis alone is enough: a banded model of 100k DOFs.
+  EXPECT_EQ(automatic_block_size(100000, 5.0 * 100000, 20), kAutomaticBlock);
   // Tiny problems keep the single vector whatever their fill.
   EXPECT_EQ(automatic_block_size(20, 20.0 * 20, 3), 1);
 }

@@ -70,6 +70,15 @@ void expect_matches_oracle(const Pencil& p, const EigenResult& r, const EigenRes
   testing::expect_same_subspaces(p, r, ref, kClusterGap, kSubspace, zero_floor);
 }
 
+// The grid Laplacian's lowest pairs against its closed form, as in
+// FreeChainRigidModeAndDoubleRootsOfSquareGrid below.
+void expect_grid_modes(const Pencil& p, const EigenResult& r, Index nx, Index ny, int count) {
+  ASSERT_TRUE(r.converged) << r.message;
+  const VectorXd exact = testing::grid_laplacian_eigenvalues(nx, ny, count);
+  testing::expect_valid_pairs(p, r, kResidual, kOrthogonality, 1e-3 * exact[1]);
+  testing::expect_same_eigenvalues(r.eigenvalues, exact, 1e-10, exact[1]);
+}
+
 TEST_P(Lanczos, RandomPencilMatchesDense) {
   const Pencil p = testing::random_pencil(300, 41, false);
   const EigenResult r = solve_lanczos(p.K, p.M, options(12));
@@ -98,6 +107,46 @@ TEST_P(Lanczos, FindsSevenFoldAndThreeFoldRepeatedEigenvalues) {
     // perturbs them by ~eps ||K|| cond(G)^2 ~ 1e-13 relative.
     testing::expect_same_eigenvalues(r.eigenvalues, values.head(15), 1e-10, 0.0);
   }
+}
+
+// The 12 lowest pairs of a prescribed spectrum with block 4, solved with
+// the multiplicity check (EigenOptions::verify_multiplicities) and
+// without; the checked run is compared with the oracle and the values.
+struct CheckedAndUnchecked {
+  EigenResult checked, unchecked;
+};
+CheckedAndUnchecked solve_with_and_without_check(const VectorXd& values, unsigned seed) {
+  const Pencil p = testing::prescribed_spectrum(values, seed, true);
+  EigenOptions o;
+  o.count = 12;
+  o.method = EigenMethod::lanczos;
+  o.block_size = 4;
+  CheckedAndUnchecked r;
+  r.checked = solve_lanczos(p.K, p.M, o);
+  o.verify_multiplicities = false;
+  r.unchecked = solve_lanczos(p.K, p.M, o);
+  expect_matches_oracle(p, r.checked, oracle(p, 12, -0.1), 12, 0.0);
+  testing::expect_same_eigenvalues(r.checked.eigenvalues, values.head(12), 1e-10, 0.0);
+  return r;
+}
+
+// The check is skipped where a block of 4 has seen fewer than 4 copies of
+// every wanted eigenvalue: the solve then makes exactly the applications of
+// a run without the check, and still finds every copy.
+TEST(LanczosMultiplicityCheck, SkippedWhereTheBlockOutnumbersEveryCopyCount) {
+  VectorXd values(200);  // 1, 2 (x3), 3 (x2), then simple values from 4 to 100
+  values << 1.0, VectorXd::Constant(3, 2.0), VectorXd::Constant(2, 3.0), VectorXd::LinSpaced(194, 4.0, 100.0);
+  const CheckedAndUnchecked r = solve_with_and_without_check(values, 79);
+  EXPECT_EQ(r.checked.operator_applications, r.unchecked.operator_applications);
+}
+
+// A copy count that reaches the block size may hide more copies: the check
+// runs (more applications than without it) and finds all six.
+TEST(LanczosMultiplicityCheck, RunsWhereACopyCountReachesTheBlock) {
+  VectorXd values(200);  // 1, 2 (x6), then simple values from 3 to 100
+  values << 1.0, VectorXd::Constant(6, 2.0), VectorXd::LinSpaced(193, 3.0, 100.0);
+  const CheckedAndUnchecked r = solve_with_and_without_check(values, 83);
+  EXPECT_GT(r.checked.operator_applications, r.unchecked.operator_applications);
 }
 
 TEST_P(Lanczos, FreeLatticeHasSixRigidBodyModes) {
@@ -350,11 +399,12 @@ TEST(LanczosAutomatic, SmallProblemsUseTheDenseSolver) {
   EXPECT_EQ(automatic.operator_applications, 0);
 }
 
-// block_size 0: the block size comes from the fill of the factor and is
-// reported. A chain's factor is a band (fill ratio far below the band), a
-// random pencil's fill lies inside it, so the two take the two branches;
-// both must still match the oracle.
-TEST(LanczosAutomatic, BlockSizeFromTheFactorsFill) {
+// block_size 0: the block size comes from the words an application streams
+// and is reported. Small pencils, whose factor and basis stay in cache, keep the single
+// vector; a 250 x 250 grid Laplacian (62,500 DOFs: its basis alone streams
+// 2.5M words per application) takes the block. Checked against the dense
+// oracle and the grid's closed form.
+TEST(LanczosAutomatic, BlockSizeFromTheWordsAnApplicationStreams) {
   struct Case {
     const char* name;
     Pencil pencil;
@@ -362,7 +412,8 @@ TEST(LanczosAutomatic, BlockSizeFromTheFactorsFill) {
     int expected_block;
   };
   const Case cases[] = {{"chain", testing::spring_chain(600, 1.0, 1.0, false), 8, 1},
-                        {"random", testing::random_pencil(300, 41, false), 12, kAutomaticBlock}};
+                        {"random", testing::random_pencil(300, 41, false), 12, 1},
+                        {"grid", testing::grid_laplacian(250, 250), 20, kAutomaticBlock}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
     EigenOptions o;
@@ -374,27 +425,35 @@ TEST(LanczosAutomatic, BlockSizeFromTheFactorsFill) {
     ASSERT_TRUE(factor.factorize_shifted(c.pencil.K, c.pencil.M, shift).ok);
     const Index n = c.pencil.K.rows();
     EXPECT_EQ(automatic_block_size(n, factor.statistics().factor_nnz, c.count), c.expected_block)
-        << "fill ratio " << block_fill_ratio(n, factor.statistics().factor_nnz, c.count);
+        << "words per application " << application_words(n, factor.statistics().factor_nnz, c.count);
     const EigenResult r = solve_lanczos(c.pencil.K, c.pencil.M, o);
     EXPECT_EQ(r.block_size, c.expected_block);
-    expect_matches_oracle(c.pencil, r, oracle(c.pencil, c.count, shift), c.count, 0.0);
+    if (n <= 600) {
+      expect_matches_oracle(c.pencil, r, oracle(c.pencil, c.count, shift), c.count, 0.0);
+    } else {
+      expect_grid_modes(c.pencil, r, 250, 250, c.count);
+    }
   }
 }
 
 TEST(LanczosAutomatic, BlockSizeFitsAGivenSubspace) {
-  // The random pencil takes the block (test above) when the subspace is free;
-  // a given one needs room for two blocks beyond the 12 wanted pairs.
-  const Pencil p = testing::random_pencil(300, 41, false);
-  for (const int subspace : {19, 20}) {
-    SCOPED_TRACE(subspace);
-    EigenOptions o;
-    o.count = 12;
-    o.subspace = subspace;
-    o.method = EigenMethod::lanczos;
-    const EigenResult r = solve_lanczos(p.K, p.M, o);
-    EXPECT_EQ(r.block_size, subspace >= 12 + 2 * kAutomaticBlock ? kAutomaticBlock : 1);
-    expect_matches_oracle(p, r, oracle(p, 12, default_shift(p.K, p.M)), 12, 0.0);
-  }
+  // The grid takes the block (test above) when the subspace is free; a
+  // given one needs room for two blocks beyond the 20 wanted pairs, and the
+  // block iteration converges in the tightest basis that leaves it.
+  const Pencil p = testing::grid_laplacian(250, 250);
+  SparseCholesky factor;
+  ASSERT_TRUE(factor.factorize_shifted(p.K, p.M, default_shift(p.K, p.M)).ok);
+  const double nnz = factor.statistics().factor_nnz;
+  EigenOptions o;
+  o.count = 20;
+  o.method = EigenMethod::lanczos;
+  o.subspace = 20 + 2 * kAutomaticBlock - 1;
+  EXPECT_EQ(o.resolved_block(p.K.rows(), nnz), 1);
+  o.subspace = 20 + 2 * kAutomaticBlock;
+  EXPECT_EQ(o.resolved_block(p.K.rows(), nnz), kAutomaticBlock);
+  const EigenResult r = solve_lanczos(p.K, p.M, o);
+  EXPECT_EQ(r.block_size, kAutomaticBlock);
+  expect_grid_modes(p, r, 250, 250, 20);
 }
 
 }  // namespace
