@@ -52,6 +52,9 @@ struct EigenOptions {
   // the converged vectors and confirm that no eigenvalue below the highest
   // wanted one was missed (Krylov methods can miss copies of a repeated
   // eigenvalue). Costs roughly the iterations needed to converge one more pair.
+  // The block iteration skips it where every wanted eigenvalue came out with
+  // fewer copies than the block has vectors (a block of b random vectors
+  // spans up to b copies).
   bool verify_multiplicities = true;
   EigenMethod method = EigenMethod::automatic;
   Eigen::Index dense_threshold = 200;
