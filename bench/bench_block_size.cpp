@@ -16,11 +16,12 @@
 // shared machine. --no-verify turns the multiplicity check off, to measure
 // what it costs.
 //
-// Sample run (2 cores, shared):
+// Sample run (2 cores, shared; the table's columns: model, DOFs, nnz(L)/n,
+// basis, words per application in millions, block 1 s, block 4 s, fastest,
+// automatic, automatic/fastest):
 //   OPENBLAS_NUM_THREADS=1 build/bench/bench_block_size --models plate:10k,plate:30k --repeat 3
-//   | model | DOFs | nnz(L)/n | basis | words per application, M | block 1 s | block 4 s | fastest | automatic |
-//   automatic/fastest | | plate:10k | 10086 | 65 | 40 | 1.06 | 0.18 | 0.27 | 1 | 1 | 1.00 | | plate:30k | 30246 | 81 |
-//   40 | 3.66 | 1.33 | 0.94 | 4 | 4 | 1.00 |
+//   | plate:10k | 10086 | 65 | 40 | 1.06 | 0.18 | 0.27 | 1 | 1 | 1.00 |
+//   | plate:30k | 30246 | 81 | 40 | 3.67 | 1.33 | 0.94 | 4 | 4 | 1.00 |
 //
 // Usage: bench_block_size [--models kind:size,...] [--blocks 1,4] [--modes 20] [--repeat 2] [--subspace M]
 //                         [--no-verify]
