@@ -14,6 +14,7 @@
 #include "io/model_reader.hpp"
 #include "io/output_folder.hpp"
 #include "io/vtk_modes.hpp"
+#include "reduction/ill_determined_modes.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "reduction/zero_frequency_modes.hpp"
 #include "report/modes_json.hpp"
@@ -179,6 +180,10 @@ int run(const ModesArgs& args) {
     std::printf("modes 1-%zu have zero frequency: %s\n", zero.size(),
                 supported ? "a mechanism, kept (--allow-mechanism)" : "rigid-body motions of the free model");
   }
+  std::vector<Eigen::Index> zero_modes;
+  for (const auto& z : zero) zero_modes.push_back(z.mode);
+  const std::vector<reduction::IllDeterminedMode> vague = reduction::ill_determined_modes(a, zero_modes);
+  if (!vague.empty()) std::fprintf(stderr, "rigflex: warning: %s\n", reduction::describe(vague, a).c_str());
   if (folder) {
     const std::filesystem::path dir(args.out);
     io::FileBatch batch;
@@ -187,6 +192,10 @@ int run(const ModesArgs& args) {
     if (!backend.builtin()) j["solver"]["method"] = backend.describe();
     j["zero_frequency_modes"] = nlohmann::json::array();
     for (const auto& z : zero) j["zero_frequency_modes"].push_back(z.mode + 1);
+    j["ill_determined_modes"] = nlohmann::json::array();
+    for (const auto& v : vague) {
+      j["ill_determined_modes"].push_back({{"mode", v.mode + 1}, {"relative_error", v.relative_error}});
+    }
     batch.add_text(dir / "modes.json", j.dump(2) + "\n");
     io::add_mode_shape_files(batch, dir, m.model, a.system.dofs, a.summary.frequencies_hz, a.result.vectors);
     folder->commit(batch);
