@@ -6,8 +6,6 @@
 // statistics over the sets, DIR/identification.json.
 #include <cstdio>
 #include <filesystem>
-#include <iterator>
-#include <mutex>
 #include <nlohmann/json.hpp>
 
 #include "apps/commands.hpp"
@@ -22,10 +20,10 @@
 #include "io/reduced_layout.hpp"
 #include "io/rig_reader.hpp"
 #include "report/identification_report.hpp"
+#include "report/identify_sets.hpp"
 #include "report/reports.hpp"
 #include "rig/effects.hpp"
 #include "rig/frame_models.hpp"
-#include "rig/parallel_for.hpp"
 
 namespace rigflex::app {
 namespace {
@@ -80,49 +78,6 @@ identify::IdentificationOptions options_from(const IdentifyArgs& a) {
   return o;
 }
 
-struct Identified {
-  std::vector<identify::IdentificationResult> sets;
-  std::vector<report::IdentificationReport::Test> tests;
-};
-
-// Identifies every set, and every history of a set alone; an unusable record
-// or an unobservable set is bad input named by its file.
-Identified identify_all(const identify::IdentificationRig& rig, const io::MeasurementSets& data,
-                        const identify::IdentificationOptions& options, int threads, bool quiet) {
-  const int n = static_cast<int>(data.sets.size());
-  std::vector<identify::IdentificationResult> out(static_cast<size_t>(n));
-  std::vector<std::vector<report::IdentificationReport::Test>> tests(static_cast<size_t>(n));
-  std::mutex progress;
-  int done = 0;
-  rig::parallel_for(n, threads, [&](int k) {
-    const io::MeasurementSet& set = data.sets[static_cast<size_t>(k)];
-    std::vector<const rig::Record*> ptrs;
-    for (const auto& r : set.records) ptrs.push_back(&r);
-    try {
-      out[static_cast<size_t>(k)] = identify::identify(rig, ptrs, options);
-    } catch (const rig::RecordError& e) {
-      throw io::record_input_error(set.records, e);
-    }
-    if (!out[static_cast<size_t>(k)].observable) {
-      // A folder names its set; loose files are named by the first of them.
-      const std::string where = data.names[static_cast<size_t>(k)] == "files"
-                                    ? set.files.front().string() + " (and the other files of the set)"
-                                    : data.names[static_cast<size_t>(k)];
-      throw io::InputError(where, 0, "", out[static_cast<size_t>(k)].message);
-    }
-    std::vector<std::string> files;
-    for (const auto& f : set.files) files.push_back(f.string());
-    tests[static_cast<size_t>(k)] = report::identify_tests(rig, ptrs, files, static_cast<size_t>(k), options);
-    if (!quiet) {
-      std::lock_guard<std::mutex> lock(progress);
-      std::fprintf(stderr, "identify (%s): set %d/%d done\n", identify::to_string(rig.algorithm), ++done, n);
-    }
-  });
-  Identified all{std::move(out), {}};
-  for (auto& t : tests) std::move(t.begin(), t.end(), std::back_inserter(all.tests));
-  return all;
-}
-
 int run(const IdentifyArgs& a) {
   io::OutputFolder folder(a.out, "identify");
   const io::RigReadOptions ro = frame_reduction_options("identify", a.quiet);
@@ -154,19 +109,38 @@ int run(const IdentifyArgs& a) {
   if (a.static_cog.size() == 3) report.static_cog_height = a.static_cog[2];
   report.options = options;
 
-  std::vector<identify::IdentificationAlgorithm> algorithms;
-  if (a.algorithm != "flexible") algorithms.push_back(identify::IdentificationAlgorithm::rigid);
-  if (a.algorithm != "rigid") algorithms.push_back(identify::IdentificationAlgorithm::flexible);
-  for (const auto alg : algorithms) {
-    const identify::IdentificationRig idr = identify::identification_rig(model, alg);
-    if (alg == identify::IdentificationAlgorithm::flexible && !idr.flexible() && !a.quiet) {
-      std::fprintf(stderr,
-                   "identify: warning: the rig model has no flexible frame or rod (no fixed_frame_flexibility, "
-                   "carrying_frame_flexibility, rod_compliance in the rig or --effects files, nor --reduced): the flexible "
-                   "algorithm equals the rigid one\n");
-    }
-    Identified identified = identify_all(idr, data, options, a.threads, a.quiet);
-    report.add(alg, std::move(identified.sets), std::move(identified.tests));
+  if (a.algorithm != "rigid" && !a.quiet &&
+      !identify::identification_rig(model, identify::IdentificationAlgorithm::flexible).flexible()) {
+    std::fprintf(
+        stderr,
+        "identify: warning: the rig model has no flexible frame or rod (no fixed_frame_flexibility, "
+        "carrying_frame_flexibility, rod_compliance in the rig or --effects files, nor --reduced): the flexible "
+        "algorithm equals the rigid one\n");
+  }
+  report::IdentifySetsOptions io_options;
+  io_options.algorithm = a.algorithm;
+  io_options.threads = a.threads;
+  if (!a.quiet) {
+    io_options.progress = [](identify::IdentificationAlgorithm alg, int done, int n) {
+      std::fprintf(stderr, "identify (%s): set %d/%d done\n", identify::to_string(alg), done, n);
+    };
+  }
+  std::vector<std::vector<const rig::Record*>> sets;
+  for (const auto& set : data.sets) {
+    sets.emplace_back();
+    for (const auto& r : set.records) sets.back().push_back(&r);
+  }
+  try {
+    report::identify_sets(model, sets, io_options, report);
+  } catch (const report::SetError& e) {
+    // An unusable record is named by its file and line; an unobservable set
+    // by its folder, loose files by the first of them.
+    const size_t k = e.set();
+    if (e.record()) throw io::record_input_error(data.sets[k].records, *e.record());
+    const std::string where = data.names[k] == "files"
+                                  ? data.sets[k].files.front().string() + " (and the other files of the set)"
+                                  : data.names[k];
+    throw io::InputError(where, 0, "", e.what());
   }
   std::fputs(report.table().c_str(), stdout);
   const std::filesystem::path out(a.out);

@@ -4,16 +4,15 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
-#include <iterator>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "identify/identification.hpp"
-#include "identify/identification_rig.hpp"
 #include "python/bindings.hpp"
 #include "report/identification_report.hpp"
+#include "report/identify_sets.hpp"
 #include "rig/rig_model.hpp"
 
 namespace rigflex::python {
@@ -49,8 +48,7 @@ std::vector<std::string> files_of(const std::vector<rig::Record>& set, size_t k)
 
 py::object identify_sets(const rig::RigModel& model, const Sets& sets, const std::string& algorithm,
                          std::optional<std::vector<double>> static_cog) {
-  if (algorithm != "rigid" && algorithm != "flexible" && algorithm != "both")
-    throw std::invalid_argument("algorithm: expected rigid, flexible or both, not '" + algorithm + "'");
+  report::algorithms_of(algorithm);  // a bad choice is refused before any work
   if (sets.empty()) throw std::invalid_argument("identify: no measurement set");
   report::IdentificationReport rep;
   rep.rig = model.name;
@@ -61,24 +59,19 @@ py::object identify_sets(const rig::RigModel& model, const Sets& sets, const std
     rep.set_names.push_back("set" + std::to_string(k + 1));
     rep.set_files.push_back(files_of(sets[k], k));
   }
-  std::vector<identify::IdentificationAlgorithm> algorithms;
-  if (algorithm != "flexible") algorithms.push_back(identify::IdentificationAlgorithm::rigid);
-  if (algorithm != "rigid") algorithms.push_back(identify::IdentificationAlgorithm::flexible);
+  report::IdentifySetsOptions io_options;
+  io_options.algorithm = algorithm;
+  std::vector<std::vector<const rig::Record*>> ptrs(sets.size());
+  for (size_t k = 0; k < sets.size(); ++k) {
+    for (const auto& r : sets[k]) ptrs[k].push_back(&r);
+  }
   {
     py::gil_scoped_release unlocked;
-    for (const auto alg : algorithms) {
-      const identify::IdentificationRig idr = identify::identification_rig(model, alg);
-      std::vector<identify::IdentificationResult> results;
-      std::vector<report::IdentificationReport::Test> tests;
-      for (size_t k = 0; k < sets.size(); ++k) {
-        std::vector<const rig::Record*> ptrs;
-        for (const auto& r : sets[k]) ptrs.push_back(&r);
-        results.push_back(identify::identify(idr, ptrs, rep.options));
-        if (!results.back().observable) throw std::invalid_argument(rep.set_names[k] + ": " + results.back().message);
-        auto t = report::identify_tests(idr, ptrs, rep.set_files[k], k, rep.options);
-        std::move(t.begin(), t.end(), std::back_inserter(tests));
-      }
-      rep.add(alg, std::move(results), std::move(tests));
+    try {
+      report::identify_sets(model, ptrs, io_options, rep);
+    } catch (const report::SetError& e) {
+      if (e.record()) throw *e.record();
+      throw std::invalid_argument(rep.set_names[e.set()] + ": " + e.what());
     }
   }
   return to_python(rep.json());
