@@ -12,7 +12,9 @@
 #include "io/model_reader.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "reduction/ill_determined_modes.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "reduction/zero_frequency_modes.hpp"
 
 namespace rigflex::python {
 namespace {
@@ -62,6 +64,22 @@ py::dict modes(const io::ModelFile& m, int count, std::optional<double> shift_hz
   d["orthogonality_error"] = a.result.orthogonality_error;
   d["dofs"] = dof_names(a.system.dofs);
   d["mass"] = mass_properties(a.mass);
+  // As modes.json: the modes of zero frequency, and the flexible modes whose
+  // frequency double precision gives to worse than 1e-6 (1-based).
+  std::vector<Eigen::Index> zero;
+  py::list zero_modes, vague;
+  for (const auto& z : reduction::zero_frequency_modes(m.model, a)) {
+    zero.push_back(z.mode);
+    zero_modes.append(z.mode + 1);
+  }
+  for (const auto& v : reduction::ill_determined_modes(a, zero)) {
+    py::dict e;
+    e["mode"] = v.mode + 1;
+    e["relative_error"] = v.relative_error;
+    vague.append(e);
+  }
+  d["zero_frequency_modes"] = zero_modes;
+  d["ill_determined_modes"] = vague;
   return d;
 }
 

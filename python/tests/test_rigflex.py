@@ -58,6 +58,41 @@ def test_modes_equal_the_command_lines_and_are_eigenpairs(tmp_path):
     assert residual.max() < 1e-8
     assert np.abs(X.T @ (M @ X) - np.eye(8)).max() < 1e-10
     assert modes["orthogonality_error"] < 1e-10
+    # The clamped frame: no mode of zero frequency, none ill-determined, as modes.json says.
+    assert modes["zero_frequency_modes"] == written["zero_frequency_modes"] == []
+    assert modes["ill_determined_modes"] == written["ill_determined_modes"] == []
+
+
+# A 1 kg block on 1 N/m springs carrying two 1 g parts on 1e10 N/m springs:
+# rounding leaves the mount modes' frequencies to about 1e-5 (the C++ test,
+# tests/reduction/test_ill_determined_modes.cpp); the module and modes.json
+# list the same modes.
+STIFF_BRACKET = """
+nodes:
+  - [1, 0, 0, 0]
+  - [2, 0.1, 0, 0]
+  - [3, 0.2, 0, 0]
+point_masses:
+  - {id: block, node: 1, mass: 1, inertia: [1e-2, 1e-2, 1e-2, 0, 0, 0]}
+  - {id: p2, node: 2, mass: 1e-3, inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0]}
+  - {id: p3, node: 3, mass: 1e-3, inertia: [1e-5, 1e-5, 1e-5, 0, 0, 0]}
+springs:
+  - {id: mount, node: 1, stiffness: [1, 1, 1, 1, 1, 1]}
+  - {id: b2, node: 1, other: 2, stiffness: [1e10, 1e10, 1e10, 1e10, 1e10, 1e10]}
+  - {id: b3, node: 2, other: 3, stiffness: [1e10, 1e10, 1e10, 1e10, 1e10, 1e10]}
+"""
+
+
+def test_ill_determined_modes_are_listed_as_by_the_command_line(tmp_path):
+    path = tmp_path / "bracket.yaml"
+    path.write_text(STIFF_BRACKET)
+    modes = rigflex.modes(rigflex.read_model(str(path)), count=8)
+    vague = modes["ill_determined_modes"]
+    assert vague and vague[0]["mode"] == 1
+    assert all(1e-6 < v["relative_error"] < 1 for v in vague)
+    cli("modes", path, "--count", 8, "--quiet", "--out", tmp_path / "out")
+    written = json.loads((tmp_path / "out" / "modes.json").read_text())
+    assert [v["mode"] for v in vague] == [v["mode"] for v in written["ill_determined_modes"]]
 
 
 def test_identification_equals_the_command_lines(measurement, tmp_path):
