@@ -119,7 +119,7 @@ int run(const ModesArgs& args) {
   opt.max_restarts = args.max_restarts;
   opt.automatic_retry = !args.no_retry;
   if (args.shift_hz) opt.shift = -std::pow(2 * M_PI * *args.shift_hz, 2);
-  const char* solver = backend.builtin() ? "lanczos" : "krylov-schur";
+  const char* solver = backend.builtin() ? "Lanczos" : "Krylov-Schur";
   if (!quiet)
     opt.progress = [solver](const linalg::EigenProgress& p) {
       std::fprintf(stderr, "\r%s: restart %d, %d converged", solver, p.restart, p.converged);
@@ -130,8 +130,8 @@ int run(const ModesArgs& args) {
   const reduction::ModalAnalysis a = reduction::run_modal_analysis(m.model, opt, assembly, backend.backend());
   if (!backend.root()) return 0;
   if (!quiet) {
-    std::fprintf(stderr, "\nfactorization %.2f s, %s %.2f s\n", a.result.factor_seconds,
-                 backend.builtin() ? "Lanczos" : "Krylov-Schur", a.result.iteration_seconds);
+    std::fprintf(stderr, "\nfactorization %.2f s, %s %.2f s\n", a.result.factor_seconds, solver,
+                 a.result.iteration_seconds);
   }
   if (a.result.over_memory_limit) {
     throw io::InputError(args.model, 0, "", memory_refusal(a.result.message));
