@@ -180,9 +180,7 @@ int run(const ModesArgs& args) {
     std::printf("modes 1-%zu have zero frequency: %s\n", zero.size(),
                 supported ? "a mechanism, kept (--allow-mechanism)" : "rigid-body motions of the free model");
   }
-  std::vector<Eigen::Index> zero_modes;
-  for (const auto& z : zero) zero_modes.push_back(z.mode);
-  const std::vector<reduction::IllDeterminedMode> vague = reduction::ill_determined_modes(a, zero_modes);
+  const std::vector<reduction::IllDeterminedMode> vague = reduction::ill_determined_modes(a, zero);
   if (!vague.empty()) std::fprintf(stderr, "rigflex: warning: %s\n", reduction::describe(vague, a).c_str());
   if (folder) {
     const std::filesystem::path dir(args.out);

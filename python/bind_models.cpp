@@ -66,12 +66,9 @@ py::dict modes(const io::ModelFile& m, int count, std::optional<double> shift_hz
   d["mass"] = mass_properties(a.mass);
   // As modes.json: the modes of zero frequency, and the flexible modes whose
   // frequency double precision gives to worse than 1e-6 (1-based).
-  std::vector<Eigen::Index> zero;
+  const std::vector<reduction::ZeroFrequencyMode> zero = reduction::zero_frequency_modes(m.model, a);
   py::list zero_modes, vague;
-  for (const auto& z : reduction::zero_frequency_modes(m.model, a)) {
-    zero.push_back(z.mode);
-    zero_modes.append(z.mode + 1);
-  }
+  for (const auto& z : zero) zero_modes.append(z.mode + 1);
   for (const auto& v : reduction::ill_determined_modes(a, zero)) {
     py::dict e;
     e["mode"] = v.mode + 1;

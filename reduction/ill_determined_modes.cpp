@@ -1,18 +1,16 @@
 #include "reduction/ill_determined_modes.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <numbers>
 
 namespace rigflex::reduction {
 
-std::vector<IllDeterminedMode> ill_determined_modes(const ModalAnalysis& a, const std::vector<Eigen::Index>& zero,
+std::vector<IllDeterminedMode> ill_determined_modes(const ModalAnalysis& a, const std::vector<ZeroFrequencyMode>& zero,
                                                     double limit) {
   std::vector<IllDeterminedMode> out;
   const Eigen::VectorXd f = a.result.frequencies_hz();
   for (Eigen::Index k = 0; k < a.result.residuals.size(); ++k) {
-    if (std::find(zero.begin(), zero.end(), k) != zero.end()) continue;
+    if (std::any_of(zero.begin(), zero.end(), [k](const ZeroFrequencyMode& z) { return z.mode == k; })) continue;
     const double error = 0.5 * a.result.residuals(k);
     if (error > limit) out.push_back({k, f(k), error});
   }
@@ -32,13 +30,12 @@ std::string describe(const std::vector<IllDeterminedMode>& modes, const ModalAna
   if (modes.empty()) return "";
   char buf[160];
   std::string s = modes.size() == 1 ? "mode " : "modes ";
-  double worst = 0, lowest = modes.front().frequency_hz;
+  double worst = 0, lambda = a.result.eigenvalues(modes.front().mode);
   for (size_t i = 0; i < modes.size(); ++i) {
     s += (i ? ", " : "") + std::to_string(modes[i].mode + 1);
     worst = std::max(worst, modes[i].relative_error);
-    lowest = std::min(lowest, modes[i].frequency_hz);
+    lambda = std::min(lambda, a.result.eigenvalues(modes[i].mode));
   }
-  const double lambda = std::pow(2.0 * std::numbers::pi * lowest, 2);
   std::snprintf(buf, sizeof buf, ": frequencies determined only to about %.1e relative in double precision", worst);
   s += buf;
   const double ratio = stiffest_ratio(a.system);

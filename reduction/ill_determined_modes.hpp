@@ -16,6 +16,7 @@
 
 #include "fe/assembly.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "reduction/zero_frequency_modes.hpp"
 
 namespace rigflex::reduction {
 
@@ -32,10 +33,10 @@ struct IllDeterminedMode {
 inline constexpr double kFrequencyAccuracy = 1e-6;
 
 // The modes of `a` whose estimated relative frequency error exceeds
-// `limit`, lowest first; `zero` lists the modes of zero frequency (the
-// rigid-body motions of a free model, reduction/zero_frequency_modes.hpp),
-// whose ratio measures rounding, not an eigenvalue.
-std::vector<IllDeterminedMode> ill_determined_modes(const ModalAnalysis& a, const std::vector<Eigen::Index>& zero,
+// `limit`, lowest first; the modes of zero frequency (`zero`, as
+// zero_frequency_modes finds them: a free model's rigid-body motions) are
+// left out, their ratio measures rounding, not an eigenvalue.
+std::vector<IllDeterminedMode> ill_determined_modes(const ModalAnalysis& a, const std::vector<ZeroFrequencyMode>& zero,
                                                     double limit = kFrequencyAccuracy);
 
 // max K_ii / M_ii over the DOFs with mass: a lower bound of lambda_max.

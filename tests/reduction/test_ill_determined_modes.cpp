@@ -62,8 +62,12 @@ TEST(IllDeterminedModes, AStiffBracketOnASoftMountLeavesTheMountModesVague) {
   EXPECT_NE(line.find("mode"), std::string::npos);
   EXPECT_NE(line.find("rigid coupling"), std::string::npos);
   // Modes listed as of zero frequency are not judged.
-  std::vector<Eigen::Index> zero;
-  for (const auto& v : vague) zero.push_back(v.mode);
+  std::vector<reduction::ZeroFrequencyMode> zero;
+  for (const auto& v : vague) {
+    reduction::ZeroFrequencyMode z;
+    z.mode = v.mode;
+    zero.push_back(z);
+  }
   EXPECT_TRUE(reduction::ill_determined_modes(a, zero).empty());
 }
 
