@@ -181,13 +181,23 @@ Step gauss_newton(const std::vector<Eigen::MatrixXd>& Js, const std::vector<Eige
   st.schur_inverse = Eigen::MatrixXd::Zero(p, p);
   if (p > 0) {
     S.diagonal() *= 1.0 + damping;  // Marquardt: the step turns toward steepest descent, scaled per parameter
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(S, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    // Equilibrated to a unit diagonal before the truncated inverse, so that
+    // the cut (1e-10 of the largest singular value) drops only directions
+    // the data and priors leave undetermined relative to their own
+    // parameters' scale. Unequilibrated, one combination determined a
+    // million times better than the rest (the crossed rod-length errors of
+    // a four-rod rig, which shift its static rod forces) pushed the body's
+    // CoG height and inertia below the cut: they were never stepped along.
+    Eigen::VectorXd e(p);
+    for (Eigen::Index i = 0; i < p; ++i) e(i) = S(i, i) > 0 ? 1.0 / std::sqrt(S(i, i)) : 1.0;
+    const Eigen::MatrixXd Se = e.asDiagonal() * S * e.asDiagonal();
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Se, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Eigen::VectorXd sv = svd.singularValues();
     Eigen::VectorXd inv = Eigen::VectorXd::Zero(p);
     for (Eigen::Index i = 0; i < p; ++i) {
       if (sv(i) > 1e-10 * sv(0)) inv(i) = 1.0 / sv(i);
     }
-    st.schur_inverse = svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose();
+    st.schur_inverse = e.asDiagonal() * (svd.matrixV() * inv.asDiagonal() * svd.matrixU().transpose()) * e.asDiagonal();
     st.dtheta = st.schur_inverse * b;
   }
   st.ds.resize(H);
