@@ -184,10 +184,10 @@ Step gauss_newton(const std::vector<Eigen::MatrixXd>& Js, const std::vector<Eige
     // Equilibrated to a unit diagonal before the truncated inverse, so that
     // the cut (1e-10 of the largest singular value) drops only directions
     // the data and priors leave undetermined relative to their own
-    // parameters' scale. Unequilibrated, one combination determined a
-    // million times better than the rest (the crossed rod-length errors of
-    // a four-rod rig, which shift its static rod forces) pushed the body's
-    // CoG height and inertia below the cut: they were never stepped along.
+    // parameters' scale. Unequilibrated, one combination whose curvature
+    // exceeds the rest's by more than the cut (the crossed rod-length errors
+    // of a four-rod rig, which shift its static rod forces) pushed the
+    // body's CoG height and inertia below it: they were never stepped along.
     Eigen::VectorXd e(p);
     for (Eigen::Index i = 0; i < p; ++i) e(i) = S(i, i) > 0 ? 1.0 / std::sqrt(S(i, i)) : 1.0;
     const Eigen::MatrixXd Se = e.asDiagonal() * S * e.asDiagonal();

@@ -15,12 +15,7 @@ namespace {
 
 using namespace rigflex;
 
-const diagnose::FittedParameter& named(const std::vector<diagnose::FittedParameter>& ps, const std::string& name) {
-  for (const auto& p : ps) {
-    if (p.name == name) return p;
-  }
-  throw std::invalid_argument("no fitted parameter " + name);
-}
+using test::named;
 
 diagnose::ModelComparison compare(const rig::RigModel& model, const std::vector<rig::Record>& data, bool fit) {
   diagnose::ModelComparisonOptions o;

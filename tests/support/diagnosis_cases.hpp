@@ -117,6 +117,16 @@ inline rig::RigModel case_truth(const std::string& name, const rig::RigModel& no
 // The seed tests/acceptance/test_uncertain_body.cpp runs a case with.
 inline std::uint64_t acceptance_seed(const std::string& name) { return 700 + std::hash<std::string>{}(name) % 100; }
 
+// The fitted parameter of that name (a body property: "cog_z", ...);
+// throws std::invalid_argument where the fit has none.
+inline const diagnose::FittedParameter& named(const std::vector<diagnose::FittedParameter>& ps,
+                                              const std::string& name) {
+  for (const auto& p : ps) {
+    if (p.name == name) return p;
+  }
+  throw std::invalid_argument("no fitted parameter " + name);
+}
+
 inline bool control_case(const std::string& name) { return name == "none" || name == "below_noise"; }
 
 // One set of six histories of 15 s (random pushes, the rig file's sensor noise).
