@@ -15,6 +15,7 @@ CandidateContext candidate_context(const rig::RigSystem& rig, double lowest_swin
   c.suspended_mass = rig.suspended_mass();
   c.body_mass = rig.assembly().body.mass;
   c.weight_per_rod = rig.suspended_weight() / c.rods;
+  c.rod_static_stretch = c.weight_per_rod / rig.rod_stiffness().maxCoeff();
   rig::Vec3 centroid = rig::Vec3::Zero();
   for (const auto& r : c.geometry.rods) {
     c.rod_length += r.length / c.rods;

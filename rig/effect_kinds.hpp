@@ -79,6 +79,9 @@ struct FitContext {
   double joint_radius = 0;     // RMS distance of the lower joints from their centroid, m
   int rods = 0;
   std::vector<double> rod_stiffness;  // N/m per rod as assembled (the rig file's rods block); empty: rigid
+  // m: the stiffest rod's stretch under its share of the weight, as
+  // assembled (rigid rods: the springs that stand for them); 0: not known.
+  double rod_static_stretch = 0;
 };
 
 struct FitParameter {

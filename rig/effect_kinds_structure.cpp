@@ -105,7 +105,7 @@ EffectFitting fit_rod_length_error(const FitContext& x) {
   const FitScales s = fit_scales(x);
   const int n = s.n;
   EffectFitting f;
-  f.parameters = per_rod_parameters("delta", "m", n, 1e-3, 0.05 * s.L);
+  f.parameters = per_rod_parameters("delta", "m", n, s.axial_probe, 0.05 * s.L);
   f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
     return std::make_shared<RodLengthError>(segment(p, 0, n));
   };
@@ -133,12 +133,19 @@ std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n) {
 // which neither the load cells nor the encoders see, and a fit along that
 // direction drifts to wherever its damping lets it (tens of millimetres,
 // beyond the plausible range, on two of five seeds of the acceptance case).
+// A joint moved along an axis moves along the rods by the axis' share of
+// their direction: the probe is FitScales::axial_probe along the rods (1 mm
+// across them, and on three rods).
 EffectFitting fit_joint_position_error(const FitContext& x) {
+  const FitScales s = fit_scales(x);
   const int n = x.rods;
+  Vec3 along = Vec3::Zero();  // per axis, the largest share of a rod's direction
+  for (const auto& r : x.geometry.rods) along = along.cwiseMax((r.upper - r.lower).normalized().cwiseAbs());
   EffectFitting f;
   for (int i = 1; i < n; ++i) {
-    for (const char* a : {"x", "y", "z"}) {
-      f.parameters.push_back({"upper" + std::to_string(i) + "_" + a, "m", 1e-3, -0.05, 0.05, false});
+    for (int a = 0; a < 3; ++a) {
+      const double probe = std::min(1e-3, s.axial_probe / std::max(along(a), 1e-3));
+      f.parameters.push_back({"upper" + std::to_string(i) + "_" + "xyz"[a], "m", probe, -0.05, 0.05, false});
     }
   }
   f.make = [n](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
