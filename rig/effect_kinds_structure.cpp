@@ -157,6 +157,7 @@ std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n, const std::vecto
 // off, ending at 9.75 x the noise; without it 0.99 x, every joint within
 // 0.05 mm sideways. On the trifilar's acceptance cases the fits reach the
 // noise with it (not rerun without it).
+//
 // A joint moved along an axis moves along the rods by the axis' share of
 // their direction: the probe is FitScales::axial_probe along the rods (1 mm
 // across them, and on three rods).
