@@ -16,11 +16,14 @@
 
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "diagnose/diagnosis.hpp"
+#include "diagnose/effect_candidates.hpp"
 #include "rig/effects.hpp"
+#include "rig/rig_system.hpp"
 #include "support/diagnosis_cases.hpp"
 #include "support/rig_cases.hpp"
 
@@ -160,6 +163,47 @@ TEST(FourRodRig, JointPositionErrorFitReachesTheNoiseWithoutTheUnseenTurn) {
     EXPECT_NEAR(found[i].y(), seen[i].y(), 1e-4) << "joint " << i + 1;
   }
   RecordProperty("residual_to_noise", std::to_string(fit.residual / d.samples));
+}
+
+// The candidates on four rods, without a fit (cheap enough for the
+// sanitizer pass): the lengths along the rods probed by a quarter of the
+// rods' static stretch, sideways by 1 mm; a turn of the upper joints about
+// the vertical builds no joint error, an error without turn builds as
+// given (each read back from the assembled geometry).
+TEST(FourRodCandidates, LengthsProbedInTheLinearRangeAndJointErrorsWithoutTheTurn) {
+  const rig::RigModel m = four_rod_rig();
+  const rig::RigSystem sys(m);
+  const double quarter_stretch = 0.25 * sys.suspended_weight() / 4.0 / 2e7;  // 7.7 micrometres
+  const auto candidates = diagnose::effect_candidates(diagnose::candidate_context(sys, 0.5));
+  const auto find = [&](const std::string& name) {
+    for (const auto& c : candidates) {
+      if (c.effect == name) return c;
+    }
+    throw std::logic_error("no candidate " + name);
+  };
+  for (const auto& p : find("rod_length_error").parameters) EXPECT_DOUBLE_EQ(p.probe, quarter_stretch) << p.name;
+  const diagnose::EffectCandidate jpe = find("joint_position_error");
+  ASSERT_EQ(jpe.parameters.size(), 9u);
+  for (size_t k = 0; k < 9; ++k) {
+    EXPECT_DOUBLE_EQ(jpe.parameters[k].probe, k % 3 == 2 ? quarter_stretch : 1e-3) << jpe.parameters[k].name;
+  }
+  const auto built = [&](const std::vector<rig::Vec3>& e) {
+    Eigen::VectorXd theta(9);
+    for (int i = 0; i < 3; ++i) theta.segment<3>(3 * i) = e[i];
+    rig::RigModel with = m;
+    with.effects.push_back(jpe.make(theta));
+    const rig::RigSystem s(with);
+    std::vector<rig::Vec3> moved;
+    for (int i = 0; i < 4; ++i) moved.push_back(s.assembly().geometry.rods[i].upper - m.geometry.rods[i].upper);
+    return moved;
+  };
+  std::vector<rig::Vec3> turn;
+  for (const auto& rod : m.geometry.rods) turn.push_back(1e-3 * rig::Vec3(-rod.upper.y(), rod.upper.x(), 0.0));
+  for (const rig::Vec3& e : built(turn)) EXPECT_LT(e.norm(), 1e-15);
+  const std::vector<rig::Vec3> plain = without_mean_and_turn(
+      {rig::Vec3(0.003, 0, 0.001), rig::Vec3(0, -0.003, 0), rig::Vec3(0.002, 0.002, -0.002), rig::Vec3::Zero()});
+  const std::vector<rig::Vec3> back = built(plain);
+  for (int i = 0; i < 4; ++i) EXPECT_LT((back[i] - plain[i]).norm(), 1e-15) << "joint " << i + 1;
 }
 
 }  // namespace
