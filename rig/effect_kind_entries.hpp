@@ -43,10 +43,10 @@ struct FitScales {
   // take a length error up as self-stress, k delta / 4 per rod on four -
   // a 1 mm probe on steel rods of 2e7 N/m is 5 kN against a few hundred
   // newtons of weight per rod, rods in compression and a swing no longer
-  // in the linear range; measured
-  // on a quadrifilar with 0.02 mm hidden, a fit with 1 mm probes stopped at
-  // 1.37 x the noise with the length errors' tilt combinations 0.04-0.07 mm
-  // off; with these (7.7 micrometres there) at 0.98 x and within 0.004 mm.
+  // in the linear range. Measured on a quadrifilar with 0.02 mm hidden: a
+  // fit with 1 mm probes stopped at 1.37 x the noise with the length
+  // errors' tilt combinations 0.04-0.07 mm off; with these (7.7
+  // micrometres there) at 0.98 x and within 0.004 mm.
   double axial_probe = 1e-3;
 };
 inline FitScales fit_scales(const FitContext& x) {

@@ -117,9 +117,9 @@ EffectFitting fit_rod_length_error(const FitContext& x) {
 
 // Every upper joint's error from the fitted ones: the first n - 1 as
 // fitted, the last minus their sum, so that the errors have zero mean;
-// with `at` (the upper joints), less their mean turn about the vertical
-// through the joints' centroid.
-std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n, const std::vector<Vec3>& at) {
+// less their component along `turn` (each joint's motion under a unit turn
+// about the vertical through the joints' centroid; empty: none taken out).
+std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n, const std::vector<Vec3>& turn) {
   std::vector<Vec3> upper;
   Vec3 sum = Vec3::Zero();
   for (int i = 0; i + 1 < n; ++i) {
@@ -127,20 +127,14 @@ std::vector<Vec3> upper_errors(const Eigen::VectorXd& p, int n, const std::vecto
     sum += upper.back();
   }
   upper.push_back(-sum);
-  if (at.empty()) return upper;
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& a : at) centroid += a / n;
+  if (turn.empty()) return upper;
   double moment = 0, polar = 0;
   for (int i = 0; i < n; ++i) {
-    const Vec3 r = at[i] - centroid;
-    moment += r.x() * upper[i].y() - r.y() * upper[i].x();
-    polar += r.x() * r.x() + r.y() * r.y();
+    moment += turn[i].y() * upper[i].y() + turn[i].x() * upper[i].x();
+    polar += turn[i].y() * turn[i].y() + turn[i].x() * turn[i].x();
   }
-  const double turn = polar > 0 ? moment / polar : 0.0;
-  for (int i = 0; i < n; ++i) {
-    const Vec3 r = at[i] - centroid;
-    upper[i] -= turn * Vec3(-r.y(), r.x(), 0.0);
-  }
+  const double angle = polar > 0 ? moment / polar : 0.0;
+  for (int i = 0; i < n; ++i) upper[i] -= angle * turn[i];
   return upper;
 }
 
@@ -173,17 +167,20 @@ EffectFitting fit_joint_position_error(const FitContext& x) {
       f.parameters.push_back({"upper" + std::to_string(i) + "_" + "xyz"[a], "m", probe, -0.05, 0.05, false});
     }
   }
-  std::vector<Vec3> at;  // empty: the turn is fitted
+  std::vector<Vec3> turn;  // empty: the turn is fitted
   if (n > 3) {
-    for (const auto& r : x.geometry.rods) at.push_back(r.upper);
+    Vec3 centroid = Vec3::Zero();
+    for (const auto& r : x.geometry.rods) centroid += r.upper / n;
+    for (const auto& r : x.geometry.rods)
+      turn.push_back(Vec3(centroid.y() - r.upper.y(), r.upper.x() - centroid.x(), 0));
   }
-  f.make = [n, at](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
-    return std::make_shared<JointPositionError>(upper_errors(p, n, at),
+  f.make = [n, turn](const Eigen::VectorXd& p) -> std::shared_ptr<const Effect> {
+    return std::make_shared<JointPositionError>(upper_errors(p, n, turn),
                                                 std::vector<Vec3>(static_cast<size_t>(n), Vec3::Zero()));
   };
-  f.write = [n, at](const Eigen::VectorXd& p) {
+  f.write = [n, turn](const Eigen::VectorXd& p) {
     std::vector<ParameterValue> upper;
-    for (const Vec3& u : upper_errors(p, n, at)) upper.push_back(ParameterValue::of(Eigen::VectorXd(u)));
+    for (const Vec3& u : upper_errors(p, n, turn)) upper.push_back(ParameterValue::of(Eigen::VectorXd(u)));
     return ParameterValue::map().set("upper", ParameterValue::list(upper));
   };
   f.advice = "survey the joint centres and correct geometry.rods[*].upper and lower";
