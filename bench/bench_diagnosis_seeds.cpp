@@ -1,7 +1,7 @@
 // bench_diagnosis_seeds [--seeds N] [--first S] [--cases a,b,...] [--threads N]
 //                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
 //                       [--contender-gain G] [--contender-settled R] [--restart-span S]
-//                       [--effects a,b,...] [--test-seed]
+//                       [--effects a,b,...] [--test-seed] [--rig trifilar|quadrifilar]
 //                       [--verbose] [--progress]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
@@ -27,7 +27,10 @@
 // iterations buy (--contender-settled: the residual / noise at which a
 // contender is left as it is; 0 takes every one on; --restart-span: which
 // contenders are restarted from their parameters zeroed one at a time, 0
-// none); --effects tests only those candidates. --test-seed
+// none); --effects tests only those candidates. --rig quadrifilar runs the
+// cases on the four-rod rig of tests/support/rig_cases.hpp (rods of
+// 2e7 N/m; its effects' sizes in tests/support/diagnosis_cases.hpp; no rod
+// compliance case: the rods' stiffness is part of that model). --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
 // gives it, to study the CI's case. --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise) and chain
@@ -54,7 +57,7 @@ struct Options {
   int seeds = 5, threads = 0;
   rigflex::diagnose::DiagnosisOptions diagnosis;
   std::uint64_t first = 1;
-  bool test_seed = false, verbose = false, progress = false;
+  bool test_seed = false, verbose = false, progress = false, quadrifilar = false;
   std::vector<std::string> cases;
 };
 
@@ -68,6 +71,10 @@ Options parse(int argc, char** argv) {
       o.first = std::stoull(bench::option_value(argc, argv, i));
     } else if (a == "--cases") {
       o.cases = bench::split(bench::option_value(argc, argv, i));
+    } else if (a == "--rig") {
+      const std::string rig = bench::option_value(argc, argv, i);
+      if (rig != "trifilar" && rig != "quadrifilar") throw std::invalid_argument("--rig: trifilar or quadrifilar");
+      o.quadrifilar = rig == "quadrifilar";
     } else if (a == "--test-seed") {
       o.test_seed = true;
     } else if (a == "--verbose") {
@@ -127,8 +134,12 @@ void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diag
   }
 }
 
+rig::RigModel nominal_rig(const Options& o) {
+  return o.quadrifilar ? test::noisy_quadrifilar() : test::noisy_trifilar();
+}
+
 void run_case(const std::string& name, const Options& o, Row& row) {
-  const rig::RigModel nominal = test::noisy_trifilar();
+  const rig::RigModel nominal = nominal_rig(o);
   const rig::RigModel truth = test::case_truth(name, nominal);
   const bool control = test::control_case(name);
   for (int k = 0; k < o.seeds; ++k) {
@@ -196,13 +207,17 @@ int main(int argc, char** argv) {
   }
   if (o.cases.empty()) {
     o.cases = {"none", "below_noise"};
-    const rig::RigModel nominal = test::noisy_trifilar();
-    for (int k = 0; k < test::kHiddenEffects; ++k) o.cases.push_back(test::hidden_effect(k, nominal)->name());
+    const rig::RigModel nominal = nominal_rig(o);
+    for (int k = 0; k < test::kHiddenEffects; ++k) {
+      if (const auto e = test::hidden_effect(k, nominal)) o.cases.push_back(e->name());
+    }
     o.cases.push_back("two_effects");
   }
-  std::printf("seeds %llu..%llu, trifilar 200 kg, 6 histories x 15 s per seed, the user's model (CoG +-3/+-3/+-7 mm, "
-              "inertia from the rigid identification)\n\n",
-              static_cast<unsigned long long>(o.first), static_cast<unsigned long long>(o.first + o.seeds - 1));
+  std::printf(
+      "seeds %llu..%llu, %s, 6 histories x 15 s per seed, the user's model (CoG +-3/+-3/+-7 mm, "
+      "inertia from the rigid identification)\n\n",
+      static_cast<unsigned long long>(o.first), static_cast<unsigned long long>(o.first + o.seeds - 1),
+      o.quadrifilar ? "quadrifilar 250 kg (rods 2e7 N/m)" : "trifilar 200 kg");
   std::printf("| case | named | fall (worst) | zG fit mm (worst) | zG id mm (worst) | residual / noise (max) | "
               "diagnose s (mean) | named instead |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& name : o.cases) {

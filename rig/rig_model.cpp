@@ -98,8 +98,9 @@ void RigModel::validate() const {
   }
   require(std::isfinite(body.mass) && body.mass > 0, "body.mass", "must be positive");
   require(finite(body.cog), "body.cog", "must be finite");
-  require(body.inertia.allFinite() && (body.inertia - body.inertia.transpose()).norm() == 0.0, "body.inertia",
-          "must be finite");
+  require(body.inertia.allFinite(), "body.inertia", "must be finite");
+  require((body.inertia - body.inertia.transpose()).norm() == 0.0, "body.inertia",
+          "must be symmetric (J_xy = J_yx, J_xz = J_zx, J_yz = J_zy exactly)");
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(body.inertia);
   const Eigen::Vector3d p = eig.eigenvalues();
   require(p.minCoeff() > 0, "body.inertia", "the inertia tensor must be positive definite (principal moments " +

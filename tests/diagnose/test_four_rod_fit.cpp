@@ -31,26 +31,6 @@ namespace {
 
 using namespace rigflex;
 
-// 250 kg on four vertical 1.2 m rods of 2e7 N/m at the corners of a
-// 1.1 x 0.84 m rectangle, the spec's sensor noise.
-rig::RigModel four_rod_rig() {
-  rig::RigModel m = test::multifilar_rig(4, 0.6, 1.2, 250.0, 0.7, 0.25);
-  const double corner[4][2] = {{0.55, 0.42}, {-0.55, 0.42}, {-0.55, -0.42}, {0.55, -0.42}};
-  for (int i = 0; i < 4; ++i) {
-    rig::RodGeometry& rod = m.geometry.rods[i];
-    rod.lower = rig::Vec3(corner[i][0], corner[i][1], 0.0);
-    rod.upper = rod.lower + rig::Vec3(0, 0, 1.2);
-    rod.encoder_axis = rig::Vec3(1, 0, 0);
-  }
-  m.body.cog = rig::Vec3(0.03, 0.02, -0.25);
-  m.body.inertia << 22, 0.4, -0.8, 0.4, 30, 0.3, -0.8, 0.3, 40;
-  m.rods.stiffness.assign(4, 2e7);
-  m.sensors.sample_rate_hz = 500;
-  m.sensors.force_noise_n = 1.0;
-  m.sensors.angle_noise_rad = 2e-5;
-  return m;
-}
-
 // The rig with `hidden` measured (six records of 15 s, `seed`), diagnosed
 // from the user's model - the CoG off by 2/2/6 mm (within the stated
 // 3/3/7), the inertia within 5 % (with parallel rods the rigid
@@ -58,9 +38,9 @@ rig::RigModel four_rod_rig() {
 // the only candidate.
 diagnose::Diagnosis diagnose_hidden(std::shared_ptr<const rig::Effect> hidden, const std::string& effect,
                                     std::uint64_t seed) {
-  rig::RigModel truth = four_rod_rig();
+  rig::RigModel truth = test::noisy_quadrifilar();
   truth.effects.push_back(std::move(hidden));
-  rig::RigModel model = four_rod_rig();
+  rig::RigModel model = test::noisy_quadrifilar();
   model.body.cog += rig::Vec3(0.002, -0.002, 0.006);
   model.body.inertia = Eigen::Vector3d(23, 29, 41).asDiagonal();
   const std::vector<rig::Record> records = test::measure_histories(truth, seed);
@@ -110,7 +90,7 @@ TEST(FourRodRig, RodLengthErrorFitMovesTheCogHeightWhereTheRecordsPutIt) {
 std::vector<rig::Vec3> without_mean_and_turn(std::vector<rig::Vec3> e) {
   rig::Vec3 mean = rig::Vec3::Zero();
   for (const rig::Vec3& x : e) mean += x / 4.0;
-  const rig::RigModel m = four_rod_rig();
+  const rig::RigModel m = test::noisy_quadrifilar();
   double moment = 0, polar = 0;
   for (int i = 0; i < 4; ++i) {
     const rig::Vec3 r = m.geometry.rods[i].upper - rig::Vec3(0, 0, 1.2);
@@ -171,7 +151,7 @@ TEST(FourRodRig, JointPositionErrorFitReachesTheNoiseWithoutTheUnseenTurn) {
 // the vertical builds no joint error, an error without turn builds as
 // given (each read back from the assembled geometry).
 TEST(FourRodCandidates, LengthsProbedInTheLinearRangeAndJointErrorsWithoutTheTurn) {
-  const rig::RigModel m = four_rod_rig();
+  const rig::RigModel m = test::noisy_quadrifilar();
   const rig::RigSystem sys(m);
   const double quarter_stretch = 0.25 * sys.suspended_weight() / 4.0 / 2e7;  // 7.7 micrometres
   const auto candidates = diagnose::effect_candidates(diagnose::candidate_context(sys, 0.5));

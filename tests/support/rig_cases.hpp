@@ -47,6 +47,28 @@ inline rig::RigModel noisy_trifilar() {
   return m;
 }
 
+// A quadrifilar: 250 kg on four vertical 1.2 m rods of 2e7 N/m at the
+// corners of a 1.1 x 0.84 m rectangle, the CoG off centre, the spec's
+// sensor noise. Four rods on a rigid carrying frame are statically
+// indeterminate: the rods' axial stiffness is part of the nominal model.
+inline rig::RigModel noisy_quadrifilar() {
+  rig::RigModel m = multifilar_rig(4, 0.6, 1.2, 250.0, 0.7, 0.25);
+  const double corner[4][2] = {{0.55, 0.42}, {-0.55, 0.42}, {-0.55, -0.42}, {0.55, -0.42}};
+  for (int i = 0; i < 4; ++i) {
+    rig::RodGeometry& rod = m.geometry.rods[i];
+    rod.lower = rig::Vec3(corner[i][0], corner[i][1], 0.0);
+    rod.upper = rod.lower + rig::Vec3(0, 0, 1.2);
+    rod.encoder_axis = rig::Vec3(1, 0, 0);
+  }
+  m.body.cog = rig::Vec3(0.03, 0.02, -0.25);
+  m.body.inertia << 22, 0.4, -0.8, 0.4, 30, 0.3, -0.8, 0.3, 40;
+  m.rods.stiffness.assign(4, 2e7);
+  m.sensors.sample_rate_hz = 500;
+  m.sensors.force_noise_n = 1.0;
+  m.sensors.angle_noise_rad = 2e-5;
+  return m;
+}
+
 // The effect `name` with these parameters added to `m` as a rig file's
 // `effects:` block adds it (io/rig_reader.cpp): its `uncertainty`, if any,
 // to m.effect_uncertainty, the rest parsed by the effect's kind.
