@@ -33,7 +33,7 @@
 // compliance case: the rods' stiffness is part of that model). --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
 // gives it, to study the CI's case. --verbose prints each run's ranking
-// (explained share, significance, F-test p, residual / noise) and chain
+// (explained share, significance, F-test p, residual / noise, notes) and chain
 // on stderr; --progress prints diagnose's progress lines there, each with
 // the seconds since the run began (where a run's time goes).
 // Deterministic for the given seeds.
@@ -121,7 +121,9 @@ void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diag
                  "  %-28s explained %.6f residual/noise %.4g p %.3g significant %d plausible %d vs first %.3g\n",
                  e.effect.c_str(), e.explained_fraction, d.samples > 0 ? e.residual / d.samples : 0.0, e.p_value,
                  e.significant, e.plausible, e.versus_first_p);
+    if (!e.note.empty()) std::fprintf(stderr, "    note: %s\n", e.note.c_str());
   }
+  if (!d.ranking_note.empty()) std::fprintf(stderr, "  ranking note: %s\n", d.ranking_note.c_str());
   for (const auto& st : d.chain) {
     std::fprintf(stderr, "  chain: %s -> %.4g x the noise (p %.3g)\n", st.effect.c_str(), st.noise_ratio, st.p_value);
     for (const auto& p : st.parameters) {
