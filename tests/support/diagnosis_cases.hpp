@@ -2,10 +2,11 @@
 // The diagnosis cases of issue 17's acceptance, shared by the tests
 // (tests/acceptance: one seed per case) and bench/bench_diagnosis_seeds
 // (many seeds): the trifilar of tests/support/rig_cases.hpp (the bench
-// also its quadrifilar) with one catalogue effect hidden at a magnitude that lifts its swing-band force or
-// angle NRMSE well above the noise's floor (so that a 5x fall after adding
-// the fitted effect can be measured), its virtual measurement, and the model
-// a user really has of it: the CoG from a static reference (drawn within
+// also its quadrifilar) with one catalogue effect hidden at a magnitude
+// that lifts its swing-band force or angle NRMSE well above the noise's
+// floor (so that a 5x fall after adding the fitted effect can be
+// measured), its virtual measurement, and the model a user really has of
+// it: the CoG from a static reference (drawn within
 // +-3, +-3, +-7 mm of the truth), the inertia from rigflex's rigid
 // identification of the same records, the rods nominal.
 #include <Eigen/Core>
