@@ -2,6 +2,7 @@
 //                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
 //                       [--contender-gain G] [--contender-settled R] [--restart-span S]
 //                       [--effects a,b,...] [--test-seed] [--rig trifilar|quadrifilar]
+//                       [--noise-corner-hz F]
 //                       [--verbose] [--progress]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
@@ -32,7 +33,10 @@
 // 2e7 N/m; its effects' sizes in tests/support/diagnosis_cases.hpp; no rod
 // compliance case: the rods' stiffness is part of that model). --test-seed
 // runs each case once with the seed tests/acceptance/test_uncertain_body.cpp
-// gives it, to study the CI's case. --verbose prints each run's ranking
+// gives it, to study the CI's case. --noise-corner-hz F passes the
+// sensors' noise (its RMS as the rig states it) through a first-order
+// low-pass at F Hz, as an amplifier's bandwidth colours it
+// (tests/support/diagnosis_cases.hpp, add_coloured_noise). --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise, notes) and chain
 // on stderr; --progress prints diagnose's progress lines there, each with
 // the seconds since the run began (where a run's time goes).
@@ -58,6 +62,7 @@ struct Options {
   rigflex::diagnose::DiagnosisOptions diagnosis;
   std::uint64_t first = 1;
   bool test_seed = false, verbose = false, progress = false, quadrifilar = false;
+  double noise_corner_hz = 0;  // > 0: the sensors' noise coloured by a first-order low-pass there
   std::vector<std::string> cases;
 };
 
@@ -75,6 +80,9 @@ Options parse(int argc, char** argv) {
       const std::string rig = bench::option_value(argc, argv, i);
       if (rig != "trifilar" && rig != "quadrifilar") throw std::invalid_argument("--rig: trifilar or quadrifilar");
       o.quadrifilar = rig == "quadrifilar";
+    } else if (a == "--noise-corner-hz") {
+      o.noise_corner_hz = std::stod(bench::option_value(argc, argv, i));
+      if (!(o.noise_corner_hz > 0)) throw std::invalid_argument("--noise-corner-hz must be > 0");
     } else if (a == "--test-seed") {
       o.test_seed = true;
     } else if (a == "--verbose") {
@@ -136,6 +144,13 @@ void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diag
   }
 }
 
+std::string noise_text(const Options& o) {
+  if (!(o.noise_corner_hz > 0)) return "";
+  char t[120];
+  std::snprintf(t, sizeof t, ", the sensors' noise through a first-order low-pass at %g Hz", o.noise_corner_hz);
+  return t;
+}
+
 rig::RigModel nominal_rig(const Options& o) {
   return o.quadrifilar ? test::noisy_quadrifilar() : test::noisy_trifilar();
 }
@@ -146,7 +161,7 @@ void run_case(const std::string& name, const Options& o, Row& row) {
   const bool control = test::control_case(name);
   for (int k = 0; k < o.seeds; ++k) {
     const std::uint64_t seed = o.test_seed ? test::acceptance_seed(name) : o.first + static_cast<std::uint64_t>(k);
-    const auto data = test::measure_histories(truth, o.test_seed ? seed : 1000 * seed + 17);
+    const auto data = test::measure_histories(truth, o.test_seed ? seed : 1000 * seed + 17, o.noise_corner_hz);
     const rig::RigModel start = test::users_model(nominal, data, seed);
     diagnose::DiagnosisOptions dopt = o.diagnosis;
     dopt.threads = o.threads;
@@ -217,9 +232,9 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "seeds %llu..%llu, %s, 6 histories x 15 s per seed, the user's model (CoG +-3/+-3/+-7 mm, "
-      "inertia from the rigid identification)\n\n",
+      "inertia from the rigid identification)%s\n\n",
       static_cast<unsigned long long>(o.first), static_cast<unsigned long long>(o.first + o.seeds - 1),
-      o.quadrifilar ? "quadrifilar 250 kg (rods 2e7 N/m)" : "trifilar 200 kg");
+      o.quadrifilar ? "quadrifilar 250 kg (rods 2e7 N/m)" : "trifilar 200 kg", noise_text(o).c_str());
   std::printf("| case | named | fall (worst) | zG fit mm (worst) | zG id mm (worst) | residual / noise (max) | "
               "diagnose s (mean) | named instead |\n|---|---|---|---|---|---|---|---|\n");
   for (const auto& name : o.cases) {

@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "diagnose/band_noise.hpp"
 #include "identify/identification_kinematics.hpp"
 #include "rig/encoder.hpp"
 #include "rig/equilibrium.hpp"
@@ -98,8 +99,8 @@ Eigen::Index BandTarget::rows_within(double seconds) const {
 BandTarget band_target(const ResponseModel& m, const rig::Record& record) {
   BandTarget b;
   b.record = uniform_record(record.t, channels_of(record));
-  b.sigma = channel_noise(b.record.channels);
   b.band = swing_band(b.record.step_s, highest_swing_hz(m));
+  b.sigma = band_noise(channel_noise(b.record.channels), near_band_noise(b.record.channels, b.band));
   b.at = band_samples(b.band, b.record.t.size());
   if (b.at.size() < 8) {
     // The band filter spans half_width samples on each side of every

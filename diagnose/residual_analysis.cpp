@@ -7,14 +7,10 @@
 #include <mutex>
 #include <numbers>
 
+#include "diagnose/fftw_planner.hpp"
+
 namespace rigflex::diagnose {
 namespace {
-
-// FFTW's planner is not thread-safe.
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 // Welch amplitude spectral density of x (segments of `n` samples).
 Eigen::VectorXd welch(const Eigen::VectorXd& x, int n, double h) {
@@ -25,7 +21,7 @@ Eigen::VectorXd welch(const Eigen::VectorXd& x, int n, double h) {
   fftw_complex* out = fftw_alloc_complex(static_cast<size_t>(bins));
   fftw_plan plan;
   {
-    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     plan = fftw_plan_dft_r2c_1d(n, in.data(), out, FFTW_ESTIMATE);
   }
   Eigen::VectorXd w(n);
@@ -41,7 +37,7 @@ Eigen::VectorXd welch(const Eigen::VectorXd& x, int n, double h) {
     ++segments;
   }
   {
-    std::lock_guard<std::mutex> lock(planner_mutex());
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
     fftw_destroy_plan(plan);
   }
   fftw_free(out);

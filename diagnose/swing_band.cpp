@@ -13,6 +13,7 @@ SwingBand swing_band(double step_s, double highest_swing_hz) {
   if (!(highest_swing_hz > 0)) throw std::invalid_argument("the rig model has no swing mode");
   SwingBand b;
   b.step_s = step_s;
+  b.swing_hz = highest_swing_hz;
   const double fs = 1.0 / step_s;
   // Pass up to 1.25 x the highest swing mode, stop from 3 x (where a rig
   // that meets the 3-4x design rule has its first deformation mode).

@@ -15,6 +15,7 @@
 namespace rigflex::diagnose {
 
 struct SwingBand {
+  double swing_hz = 0;     // the highest swing mode it was made for
   double cutoff_hz = 0;    // -6 dB point of the low-pass
   double step_s = 0;       // sample interval of the uniform record
   Eigen::VectorXd kernel;  // odd length, unit DC gain, symmetric

@@ -10,6 +10,7 @@
 // +-3, +-3, +-7 mm of the truth), the inertia from rigflex's rigid
 // identification of the same records, the rods nominal.
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -24,9 +25,9 @@
 #include "diagnose/body_parameters.hpp"
 #include "diagnose/diagnosis.hpp"
 #include "identify/identification.hpp"
+#include "identify/identification_rig.hpp"
 #include "io/effects_file.hpp"
 #include "io/rig_reader.hpp"
-#include "identify/identification_rig.hpp"
 #include "rig/effects.hpp"
 #include "rig/joint_compliance.hpp"
 #include "rig/simulation.hpp"
@@ -190,12 +191,45 @@ inline const diagnose::FittedParameter& named(const std::vector<diagnose::Fitted
 
 inline bool control_case(const std::string& name) { return name == "none" || name == "below_noise"; }
 
-// One set of six histories of 15 s (random pushes, the rig file's sensor noise).
-inline std::vector<rig::Record> measure_histories(const rig::RigModel& truth, std::uint64_t seed) {
+// Noise of standard deviation `sigma` through a first-order low-pass at
+// `corner_hz` (an amplifier's bandwidth), added to every sample of `x`:
+// AR(1), e_k = a e_(k-1) + sqrt(1 - a^2) sigma w_k with a = exp(-2 pi
+// corner h), started stationary - its RMS is sigma, its spectral density in
+// the swing band (1 + a) / (1 - a) x white noise's of that RMS.
+inline void add_coloured_noise(Eigen::MatrixXd& x, double sigma, double corner_hz, double step_s,
+                               std::mt19937_64& rng) {
+  std::normal_distribution<double> w(0.0, 1.0);
+  const double a = std::exp(-2.0 * 3.141592653589793 * corner_hz * step_s), b = std::sqrt(1.0 - a * a);
+  for (Eigen::Index c = 0; c < x.cols(); ++c) {
+    double e = sigma * w(rng);
+    for (Eigen::Index k = 0; k < x.rows(); ++k) {
+      x(k, c) += e;
+      e = a * e + b * sigma * w(rng);
+    }
+  }
+}
+
+// One set of six histories of 15 s (random pushes, the rig file's sensor
+// noise; with noise_corner_hz > 0 that noise through a first-order low-pass
+// at that corner, its RMS as the rig file states it).
+inline std::vector<rig::Record> measure_histories(const rig::RigModel& truth, std::uint64_t seed,
+                                                  double noise_corner_hz = 0) {
   rig::MeasurementOptions o;
   o.histories = 6;
   o.seed = seed;
-  return rig::simulate_measurement(rig::RigSystem(truth), o).front();
+  if (!(noise_corner_hz > 0)) return rig::simulate_measurement(rig::RigSystem(truth), o).front();
+  rig::RigModel clean = truth;
+  clean.sensors.force_noise_n = 0;
+  clean.sensors.angle_noise_rad = 0;
+  std::vector<rig::Record> r = rig::simulate_measurement(rig::RigSystem(clean), o).front();
+  std::mt19937_64 rng(seed ^ 0x5eedc0105edULL);
+  for (rig::Record& x : r) {
+    const double h = 1.0 / x.sample_rate_hz;
+    add_coloured_noise(x.force, truth.sensors.force_noise_n, noise_corner_hz, h, rng);
+    add_coloured_noise(x.alpha, truth.sensors.angle_noise_rad, noise_corner_hz, h, rng);
+    add_coloured_noise(x.beta, truth.sensors.angle_noise_rad, noise_corner_hz, h, rng);
+  }
+  return r;
 }
 
 inline std::vector<const rig::Record*> record_pointers(const std::vector<rig::Record>& r) {
