@@ -186,6 +186,11 @@ TEST(RigSimulation, GeneralizedAlphaStepResolvesTheFirstDeformationMode) {
   EXPECT_GT(h, 0.5 / (30.0 * 40.0));
   lin.modes = {swing};
   EXPECT_DOUBLE_EQ(rig::generalized_alpha_step(lin, 500.0), 0.002);
+  // Records at lower rates: the swing still gets 2 ms (kMaxStep), not the
+  // sample interval, whose period error a fit would read as a rod length.
+  EXPECT_DOUBLE_EQ(rig::generalized_alpha_step(lin, 100.0), 0.002);
+  EXPECT_DOUBLE_EQ(rig::generalized_alpha_step(lin, 125.0), 0.008 / 4.0);
+  EXPECT_DOUBLE_EQ(rig::generalized_alpha_step(lin, 300.0), 1.0 / 600.0);
 }
 
 TEST(RigSimulation, GeneralizedAlphaResolvesTheRodBounce) {
