@@ -9,8 +9,8 @@
 // the swing band: the RMS x sqrt((1 + a) / (1 - a)) for the low-pass's
 // AR(1) coefficient a):
 //   third diff.  the median absolute third difference (channel_noise)
-//   near band    the periodogram's median from 3.5 to 15 x the highest
-//                swing mode (near_band_noise)
+//   near band    the median over the bins from 3.5 to 15 x the highest
+//                swing mode of a Welch spectrum (near_band_noise)
 //   used         what the fits weigh by (band_noise: the first, or the
 //                second / 1.3 where that is larger)
 // each as min / median / max of estimate / truth over every channel and

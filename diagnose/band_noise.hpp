@@ -6,9 +6,10 @@
 // noise only where the noise is white. A load cell amplifier or an
 // anti-aliasing filter with its corner well below the Nyquist frequency
 // colours it: its third differences then see a fraction of it (a
-// first-order low-pass at 8 Hz on records at 500 Hz: a quarter), and a
-// model as good as the sensors would stand hundreds of times "above the
-// noise" in the band - no fit could reach it, no body would be credible.
+// first-order low-pass on records at 500 Hz: at 30 Hz a fifth, at 8 Hz a
+// twentieth; bench/bench_noise_estimate), and a model as good as the
+// sensors would stand tens to hundreds of times "above the noise" in the
+// band - no fit could reach it, no body would be credible.
 // So the noise is also measured just above the swing band, where the
 // records hold little but noise: the median over the bins of a Welch
 // spectrum from 3.5 to 15 x the highest swing mode (the swing itself

@@ -2,10 +2,11 @@
 // (diagnose/band_noise.hpp), against synthetic channels whose noise is known:
 // white, white under a swing and a frame's ringing line, and coloured by a
 // first-order low-pass. Records of 60 s at 500 Hz for a swing of 0.583 Hz
-// (the trifilar's): the near-band estimate is then the median of some 900
-// half-overlapping periodogram cells, within about 3 % (one standard
-// deviation, in sigma) of the noise's level; the tolerances below are 3 of
-// those, widened where a line biases the median (stated there).
+// (the trifilar's): the near-band estimate is then the median over 27 bins
+// of a Welch spectrum averaged over 26 half-overlapping segments, within
+// about 3 % (one standard deviation, in sigma) of the noise's level; the
+// tolerances below are 3 of those, widened where a line biases the median
+// (stated there).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -51,8 +52,9 @@ TEST(BandNoise, WhiteNoiseUnderASwingAndARingingLineIsMeasuredAsWhite) {
   const Eigen::VectorXd third = diagnose::channel_noise(x);
   EXPECT_NEAR(near(0), 1.0, 0.1);
   EXPECT_NEAR(near(1) / 2e-5, 1.0, 0.1);  // the swing does not leak into the near band
-  // The line takes about 3 of the near band's 27 bins (Hann's main lobe):
-  // the median moves to the noise cells' 56th percentile, +9 % in sigma.
+  // The line raises the bins of Hann's main lobe and first sidelobes, a
+  // few of the near band's 27: the median moves up the noise bins'
+  // distribution by their share (bounded here at +20 % in sigma).
   EXPECT_GT(near(2), 0.9);
   EXPECT_LT(near(2), 1.2);
   // White noise keeps the third differences' estimate, to the last bit.
