@@ -1,5 +1,5 @@
 // rigflex diagnose RIG.yaml DATA... --out DIR [--effects FILE]... [--only NAMES]
-//   [--threads N] [--max-effects N] [--rank-all] [--quiet]:
+//   [--threads N] [--max-effects N] [--period-tolerance E] [--rank-all] [--quiet]:
 // which effect of the catalogue the model misses: each one the model lacks
 // fitted to the measurements with every history's swing state, ranked by
 // the share of the residual it explains; DIR/diagnosis.json, and per effect
@@ -34,6 +34,7 @@ struct DiagnoseArgs {
   double fit_window = 0;
   int threads = 0, max_effects = 3;
   bool quiet = false, rank_all = false;
+  double period_tolerance = diagnose::DiagnosisOptions{}.period_tolerance;
 };
 
 // The fitted effect as an effects file, saying how well it fits and what
@@ -85,6 +86,7 @@ int diagnose_with(MeasuredModel& mm, const DiagnoseArgs& a, io::OutputFolder& fo
   o.effects = a.only;
   o.max_effects = a.max_effects;
   o.rank_at_noise = a.rank_all;
+  o.period_tolerance = a.period_tolerance;
   if (!a.quiet) o.progress = [](const std::string& s) { std::fprintf(stderr, "diagnose: %s\n", s.c_str()); };
   try {
     o.validate();
@@ -165,6 +167,10 @@ void add_diagnose_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", a->threads, "threads (0: all cores)")->check(thread_count());
   cmd->add_option("--max-effects", a->max_effects, "effects the chain accepts at most (1: the missing one alone)")
       ->check(positive());
+  cmd->add_option("--period-tolerance", a->period_tolerance,
+                  "relative swing period error the records' simulator may have, allowed in the gate (0: records "
+                  "from a real rig)")
+      ->check(CLI::Range(0.0, 0.0099));
   cmd->add_option("--out", a->out, "output folder")->required();
   cmd->add_flag("--rank-all", a->rank_all,
                 "fit and rank every candidate even where the model reaches the noise (none can be significant)");

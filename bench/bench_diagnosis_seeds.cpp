@@ -2,7 +2,7 @@
 //                       [--relinearizations N] [--refinements N] [--relinearize-gain G]
 //                       [--contender-gain G] [--contender-settled R] [--restart-span S]
 //                       [--effects a,b,...] [--test-seed] [--rig trifilar|quadrifilar]
-//                       [--noise-corner-hz F] [--sample-rate-hz F]
+//                       [--noise-corner-hz F] [--sample-rate-hz F] [--truth-bdf-rtol R]
 //                       [--verbose] [--progress]:
 // issue 17's acceptance over many seeds, the study tests/acceptance runs one
 // seed of. Per case - each catalogue effect hidden in the trifilar of
@@ -38,7 +38,10 @@
 // low-pass at F Hz, as an amplifier's bandwidth colours it
 // (tests/support/diagnosis_cases.hpp, add_coloured_noise); --sample-rate-hz
 // records at that rate instead of the rig's 500 Hz (the data contract's
-// range is 100-1000 Hz; the noise per sample as stated). --verbose prints each run's ranking
+// range is 100-1000 Hz; the noise per sample as stated); --truth-bdf-rtol R
+// simulates every case's records by CVODE's BDF at relative tolerance R
+// (the clean control's integrator, otherwise only there), as records from
+// another, accurate simulator would be. --verbose prints each run's ranking
 // (explained share, significance, F-test p, residual / noise, notes) and chain
 // on stderr; --progress prints diagnose's progress lines there, each with
 // the seconds since the run began (where a run's time goes).
@@ -66,6 +69,7 @@ struct Options {
   bool test_seed = false, verbose = false, progress = false, quadrifilar = false;
   double noise_corner_hz = 0;  // > 0: the sensors' noise coloured by a first-order low-pass there
   double sample_rate_hz = 0;   // > 0: the sensors' rate, for the rig's
+  double truth_rtol = 0;       // > 0: every case's records by BDF at this relative tolerance
   std::vector<std::string> cases;
 };
 
@@ -89,6 +93,10 @@ Options parse(int argc, char** argv) {
     } else if (a == "--sample-rate-hz") {
       o.sample_rate_hz = std::stod(bench::option_value(argc, argv, i));
       if (!(o.sample_rate_hz > 0)) throw std::invalid_argument("--sample-rate-hz must be > 0");
+    } else if (a == "--truth-bdf-rtol") {
+      o.truth_rtol = std::stod(bench::option_value(argc, argv, i));
+      if (!(o.truth_rtol > 0 && o.truth_rtol < 1e-2))
+        throw std::invalid_argument("--truth-bdf-rtol must be in (0, 1e-2)");
     } else if (a == "--test-seed") {
       o.test_seed = true;
     } else if (a == "--verbose") {
@@ -128,8 +136,8 @@ struct Row {
 };
 
 void print_run(const std::string& name, std::uint64_t seed, const diagnose::Diagnosis& d) {
-  std::fprintf(stderr, "%s seed %llu: baseline %.3g x the noise; %s\n", name.c_str(),
-               static_cast<unsigned long long>(seed), d.noise_ratio, d.summary.c_str());
+  std::fprintf(stderr, "%s seed %llu: baseline %.3g x the noise (gate %.3g, numerics %.3g); %s\n", name.c_str(),
+               static_cast<unsigned long long>(seed), d.noise_ratio, d.noise_gate, d.numerics_ratio, d.summary.c_str());
   for (const auto& e : d.ranking) {
     std::fprintf(stderr,
                  "  %-28s explained %.6f residual/noise %.4g p %.3g significant %d plausible %d vs first %.3g\n",
@@ -161,6 +169,10 @@ std::string noise_text(const Options& o) {
     std::snprintf(t, sizeof t, ", records at %g Hz", o.sample_rate_hz);
     text += t;
   }
+  if (o.truth_rtol > 0) {
+    std::snprintf(t, sizeof t, ", every record simulated by BDF at relative tolerance %g", o.truth_rtol);
+    text += t;
+  }
   return text;
 }
 
@@ -172,7 +184,11 @@ rig::RigModel nominal_rig(const Options& o) {
 
 void run_case(const std::string& name, const Options& o, Row& row) {
   const rig::RigModel nominal = nominal_rig(o);
-  const rig::RigModel truth = test::case_truth(name, nominal);
+  rig::RigModel truth = test::case_truth(name, nominal);
+  if (o.truth_rtol > 0) {
+    truth.simulation.method = rig::IntegrationMethod::bdf;
+    truth.simulation.relative_tolerance = o.truth_rtol;
+  }
   const bool control = test::control_case(name);
   for (int k = 0; k < o.seeds; ++k) {
     const std::uint64_t seed = o.test_seed ? test::acceptance_seed(name) : o.first + static_cast<std::uint64_t>(k);

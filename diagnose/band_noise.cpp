@@ -1,15 +1,13 @@
 #include "diagnose/band_noise.hpp"
 
-#include <fftw3.h>
-
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <mutex>
-#include <numbers>
 #include <vector>
 
-#include "diagnose/fftw_planner.hpp"
+#include "diagnose/real_transform.hpp"
+#include "diagnose/welch.hpp"
+#include "rig/median.hpp"
 
 namespace rigflex::diagnose {
 namespace {
@@ -18,51 +16,6 @@ int next_power_of_two(double n) {
   int p = 1;
   while (p < n) p *= 2;
   return p;
-}
-
-// One real transform of length n and its inverse on owned buffers, the
-// plans made and destroyed under the planner's lock.
-class RealTransform {
- public:
-  explicit RealTransform(int n)
-      : n_(n), real_(fftw_alloc_real(static_cast<size_t>(n))), spectrum_(fftw_alloc_complex(bins())) {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    forward_ = fftw_plan_dft_r2c_1d(n, real_, spectrum_, FFTW_ESTIMATE);
-    inverse_ = fftw_plan_dft_c2r_1d(n, spectrum_, real_, FFTW_ESTIMATE);
-  }
-  ~RealTransform() {
-    {
-      std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-      fftw_destroy_plan(forward_);
-      fftw_destroy_plan(inverse_);
-    }
-    fftw_free(spectrum_);
-    fftw_free(real_);
-  }
-  RealTransform(const RealTransform&) = delete;
-  RealTransform& operator=(const RealTransform&) = delete;
-
-  size_t bins() const { return static_cast<size_t>(n_ / 2 + 1); }
-  double* real() { return real_; }
-  std::complex<double> bin(size_t k) const { return {spectrum_[k][0], spectrum_[k][1]}; }
-  void set_bin(size_t k, std::complex<double> v) {
-    spectrum_[k][0] = v.real();
-    spectrum_[k][1] = v.imag();
-  }
-  void forward() { fftw_execute(forward_); }
-  void inverse() { fftw_execute(inverse_); }  // unnormalized: n x the signal
-
- private:
-  int n_;
-  double* real_;
-  fftw_complex* spectrum_;
-  fftw_plan forward_, inverse_;
-};
-
-double median(std::vector<double> v) {
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 }  // namespace
@@ -91,10 +44,6 @@ Eigen::VectorXd near_band_noise(const Eigen::MatrixXd& channels, const SwingBand
   whole.forward();
   for (size_t k = 0; k < pass.size(); ++k) pass[k] = whole.bin(k);
 
-  RealTransform segment(n);
-  Eigen::VectorXd window(n);
-  for (int k = 0; k < n; ++k) window(k) = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * k / n);
-  const double window_power = window.squaredNorm();
   Eigen::VectorXd high(interior);
   for (Eigen::Index c = 0; c < C; ++c) {
     std::fill(whole.real(), whole.real() + L, 0.0);
@@ -110,17 +59,11 @@ Eigen::VectorXd near_band_noise(const Eigen::MatrixXd& channels, const SwingBand
     // (each exponential, mean sigma^2 x the window's power): chi-square with
     // 2K degrees of freedom / 2K, whose median is (1 - 2 / (18 K))^3 of the
     // mean (Wilson and Hilferty).
-    Eigen::VectorXd power = Eigen::VectorXd::Zero(last_bin - first_bin + 1);
-    int segments = 0;
-    for (Eigen::Index start = 0; start + n <= interior; start += n / 2, ++segments) {
-      for (int k = 0; k < n; ++k) segment.real()[k] = high(start + k) * window(k);
-      segment.forward();
-      for (int k = first_bin; k <= last_bin; ++k)
-        power(k - first_bin) += std::norm(segment.bin(static_cast<size_t>(k)));
-    }
-    const double dof = 2.0 * segments, median_of_mean = std::pow(1.0 - 2.0 / (9.0 * dof), 3);
-    sigma(c) = std::sqrt(median(std::vector<double>(power.data(), power.data() + power.size())) /
-                         (segments * window_power * median_of_mean));
+    const WelchSums w = welch_sums(high, n);
+    const Eigen::VectorXd near = w.power.segment(first_bin, last_bin - first_bin + 1);
+    const double dof = 2.0 * w.segments, median_of_mean = std::pow(1.0 - 2.0 / (9.0 * dof), 3);
+    sigma(c) = std::sqrt(rig::upper_median(std::vector<double>(near.data(), near.data() + near.size())) /
+                         (w.segments * w.window_power * median_of_mean));
   }
   return sigma;
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "diagnose/period_allowance.hpp"
+
 namespace rigflex::diagnose {
 namespace {
 
@@ -133,7 +135,8 @@ std::optional<ModelParameterFit> fit_model_parameters(const ResponseModel& base,
   }
   // Far above the noise the offsets measure the model's missing physics, not
   // the body (diagnose's body_credible): the rig file's model is kept.
-  out.credible = f.at.data <= (1.0 + o.noise_excess) * d.samples;
+  const double gate = gate_ratio(o, period_error_residual(targets, o.period_tolerance) / d.samples);
+  out.credible = f.at.data <= gate * d.samples;
   out.model = out.credible ? model_with(model, fit.body(), f.at.theta) : model;
   return out;
 }

@@ -13,6 +13,7 @@
 #include "diagnose/effect_chain.hpp"
 #include "diagnose/fit_discrimination.hpp"
 #include "diagnose/joint_fit.hpp"
+#include "diagnose/period_allowance.hpp"
 #include "identify/identification_kinematics.hpp"
 #include "rig/effect_kinds.hpp"
 #include "rig/equilibrium.hpp"
@@ -40,11 +41,18 @@ void DiagnosisOptions::validate() const {
     throw std::invalid_argument("min_excess_share: must lie in [0, 1]");
   }
   if (!(noise_excess >= 0)) throw std::invalid_argument("noise_excess: must be >= 0");
+  if (!(period_tolerance >= 0 && period_tolerance < 1e-2)) {
+    throw std::invalid_argument("period_tolerance: must lie in [0, 0.01)");
+  }
   if (!(discrimination > 0 && discrimination < 1)) throw std::invalid_argument("discrimination: must lie in (0, 1)");
   if (max_effects < 1) throw std::invalid_argument("max_effects: must be >= 1");
   for (const auto& e : effects) {
     if (!rig::find_effect_kind(e)) throw std::invalid_argument("effects: unknown effect '" + e + "'");
   }
+}
+
+double gate_ratio(const DiagnosisOptions& options, double numerics_ratio) {
+  return 1.0 + std::max(options.noise_excess, numerics_ratio);
 }
 
 namespace {
@@ -207,7 +215,7 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
   ef.explained_fraction = rss > 0 ? std::max(0.0, (rss - cost) / rss) : 0.0;
   ef.parameters = fitted_values(c.parameters, nb, o.at, o.schur_inverse, nb + p, d);
   for (const auto& fp : ef.parameters) ef.plausible = ef.plausible && fp.plausible;
-  ef.body_credible = nb > 0 && cost <= (1.0 + options.noise_excess) * d.samples;
+  ef.body_credible = nb > 0 && cost <= d.noise_gate * d.samples;
   Eigen::VectorXd theta = o.at.theta.tail(p);
   if (ef.body_credible) {
     ef.body = body_values(fit, o.at, o.schur_inverse, d);
@@ -223,7 +231,7 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
   const double excess = std::max(rss - d.samples, 0.0);
   // An implausible fit is never the missing effect: the catalogue's effect
   // stretched beyond physics to mimic something else.
-  ef.significant = rss > (1.0 + options.noise_excess) * d.samples && ef.p_value < options.significance &&
+  ef.significant = rss > d.noise_gate * d.samples && ef.p_value < options.significance &&
                    ef.explained_fraction >= options.min_explained &&
                    (rss - cost) >= options.min_excess_share * excess && ef.plausible;
   // None when the fit amounts to no effect; with the values' uncertainty,
@@ -555,8 +563,8 @@ void follow_chain(Fitter& fit, const std::vector<EffectCandidate>& candidates, c
   // The accepted effects' values are the tail of the last step's theta (after the body's).
   FitPoint point = points.at(missing->effect);
   std::vector<const EffectCandidate*> accepted{candidate(missing->effect)};
-  while (static_cast<int>(d.chain.size()) < options.max_effects &&
-         point.data > (1.0 + options.noise_excess) * d.samples && accepted.size() < candidates.size()) {
+  while (static_cast<int>(d.chain.size()) < options.max_effects && point.data > d.noise_gate * d.samples &&
+         accepted.size() < candidates.size()) {
     if (accepted.back()->stand_in) {
       char note[400];
       std::snprintf(note, sizeof note,
@@ -618,7 +626,7 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
                     d.chain.back().noise_ratio);
       d.summary += r;
     }
-  } else if (d.noise_ratio <= 1.0 + options.noise_excess) {
+  } else if (d.noise_ratio <= d.noise_gate) {
     d.summary =
         "no significant missing effect: the model matches the measurements to the noise (and the "
         "simulator's numerics)";
@@ -664,8 +672,10 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
   Fitter fit(model, base, targets, body_parameters(model), options.threads);
   Fitter held(model, base, targets, BodyParameters{}, options.threads);
   const Baseline b = fit_baseline(fit, model, base, targets, states, options, d);
+  d.numerics_ratio = period_error_residual(targets, options.period_tolerance) / d.samples;
+  d.noise_gate = gate_ratio(options, d.numerics_ratio);
   // Within the gate every significance test applies (score): no effect can be significant.
-  const bool at_noise = b.at.data <= (1.0 + options.noise_excess) * d.samples;
+  const bool at_noise = b.at.data <= d.noise_gate * d.samples;
   if (at_noise) d.body = body_values(fit, b.at, b.schur_inverse, d);
   for (const auto& e : model.effects) d.present.push_back(e->name());
   const std::vector<EffectCandidate> candidates = candidates_to_test(base, d.present, options);
@@ -674,7 +684,7 @@ Diagnosis diagnose(const rig::RigModel& model, const std::vector<const rig::Reco
     std::snprintf(note, sizeof note,
                   "no candidate was fitted: the model as it is reaches the noise (%.3g x, the threshold %.3g x), "
                   "where no effect can be significant; rank_at_noise (--rank-all) fits them",
-                  d.noise_ratio, 1.0 + options.noise_excess);
+                  d.noise_ratio, d.noise_gate);
     d.ranking_note = note;
     conclude(d, options);
     return d;

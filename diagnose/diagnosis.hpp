@@ -13,9 +13,10 @@
 // stated uncertainty are reported as "model parameter off".
 //
 // Significance: an effect is reported as significant only when all hold:
-//  - the model misses more than the noise: the baseline's noise-weighted
-//    residual exceeds what noise alone gives by `noise_excess` (x 4 by
-//    default, see there);
+//  - the model misses more than the noise and a simulator's numerics: the
+//    baseline's noise-weighted residual exceeds what noise alone gives by
+//    `noise_excess` (x 4 by default, see there) and by what a period error
+//    of `period_tolerance` leaves in the records (Diagnosis::noise_gate);
 //  - the F test of the effect's improvement, with the sample count reduced to
 //    the band's independent samples, has a p-value below `significance`;
 //  - it explains at least `min_explained` of the residual and
@@ -85,9 +86,20 @@ struct DiagnosisOptions {
   // the model's own records give 0.92-0.95 x the noise; records of the same
   // model integrated by CVODE's BDF2 (another simulator, each with a period
   // error near 1e-5) give 2.35 x, which the band's small noise shows as a
-  // rod length error of some micrometres. Above 4 x a model misses more than
-  // a simulator's numerics can.
+  // rod length error of some micrometres. The floor of the gate; in noise
+  // units a simulator's numerics grow with the sample rate and a quieter
+  // logger, so the gate also takes period_tolerance's allowance.
   double noise_excess = 3.0;
+  // A relative error of the swing's period that the records' simulator may
+  // have (diagnose/period_allowance.hpp): the gate is the larger of
+  // noise_excess and what such an error leaves in the records at hand.
+  // CVODE's BDF at its default tolerance leaves about 1.1e-5 (the clean
+  // control at 1000 Hz: 6.6 x the noise, where 1e-5 leaves 5.5 x); 1.5e-5
+  // keeps a margin of 1.4 on it, the margin noise_excess keeps at 500 Hz
+  // (BDF's records there: 2.55 x, the gate 4 x). A pendulum of 1.5 m
+  // changes its period that much with 0.05 mm more length: no rod is
+  // measured that well.
+  double period_tolerance = 1.5e-5;
   // Two significant effects are told apart when Vuong's test rejects "both
   // fit equally well" at this level (two-sided); otherwise both are named.
   double discrimination = 0.01;
@@ -168,6 +180,10 @@ struct Diagnosis {
   double samples = 0;                       // residual terms (band samples x channels)
   double independence = 1;                  // independent share of the band samples
   double noise_ratio = 0;                   // residual / samples: 1 = at the noise
+  // What a period error of DiagnosisOptions::period_tolerance leaves, per
+  // sample (the records' simulator's numerics), and the gate: at or below
+  // noise_gate x the noise the model reaches the noise and those numerics.
+  double numerics_ratio = 0, noise_gate = 0;
   std::vector<std::string> present;         // effects the model has (not tested)
   std::vector<EffectFit> ranking;           // best first
   std::optional<std::string> missing_effect;
@@ -186,6 +202,10 @@ struct Diagnosis {
   std::vector<FittedParameter> body, parameters_off;
   std::string summary;  // one line: the verdict
 };
+
+// The residual / noise at or below which a model reaches the noise and a
+// simulator's numerics: 1 + max(noise_excess, numerics_ratio).
+double gate_ratio(const DiagnosisOptions& options, double numerics_ratio);
 
 // How a fitted parameter's value is shown: lengths in mm, a dimensionless
 // one (a gain) without a unit. `suffix` is " mm", " kg m^2" or "".

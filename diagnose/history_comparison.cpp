@@ -12,6 +12,7 @@
 #include "identify/identification_kinematics.hpp"
 #include "rig/encoder.hpp"
 #include "rig/equilibrium.hpp"
+#include "rig/median.hpp"
 #include "rig/pose_fit.hpp"
 
 namespace rigflex::diagnose {
@@ -22,13 +23,6 @@ void CompareOptions::validate() const {
 }
 
 namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
 
 double std_dev(const Eigen::VectorXd& x) {
   if (x.size() < 2) return 0.0;
@@ -70,7 +64,7 @@ Eigen::VectorXd channel_noise(const Eigen::MatrixXd& channels) {
     std::vector<double> d3;
     d3.reserve(static_cast<size_t>(std::max<Eigen::Index>(x.size() - 3, 0)));
     for (Eigen::Index k = 0; k + 3 < x.size(); ++k) d3.push_back(std::abs(x(k + 3) - 3 * x(k + 2) + 3 * x(k + 1) - x(k)));
-    const double mad = median(d3);
+    const double mad = rig::upper_median(d3);
     // Quantized data (an encoder of few bits against a slow swing) can make
     // most third differences exactly zero: the quantization noise, step /
     // sqrt(12) with the step the smallest nonzero change between samples,

@@ -8,6 +8,7 @@
 #include "rig/encoder.hpp"
 #include "rig/equilibrium.hpp"
 #include "rig/generalized_alpha.hpp"
+#include "rig/median.hpp"
 #include "rig/pose_fit.hpp"
 #include "rig/simulation.hpp"
 
@@ -44,13 +45,6 @@ ResponseModel::ResponseModel(const rig::RigModel& model) : system(model), linear
 namespace {
 
 double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
-double median_step(const Eigen::VectorXd& t) {
-  std::vector<double> d(static_cast<size_t>(t.size() - 1));
-  for (Eigen::Index k = 0; k + 1 < t.size(); ++k) d[static_cast<size_t>(k)] = t(k + 1) - t(k);
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
-  return d[d.size() / 2];
-}
 
 }  // namespace
 
@@ -147,7 +141,7 @@ Eigen::MatrixXd predict_channels(const ResponseModel& m, const SwingState& s, co
     rig::Integrator integ(rig, so);
     return sampled_channels(integ, m, s, t, elastic);
   }
-  const double step = generalized_alpha_step(m.linearization, 1.0 / median_step(t), m.resolve_hz);
+  const double step = generalized_alpha_step(m.linearization, 1.0 / rig::median_step(t), m.resolve_hz);
   rig::GeneralizedAlpha integ(rig, m.linearization, step, so.position_tolerance);
   return sampled_channels(integ, m, s, t, elastic);
 }

@@ -1,49 +1,18 @@
 #include "diagnose/residual_analysis.hpp"
 
-#include <fftw3.h>
-
 #include <algorithm>
 #include <cmath>
-#include <mutex>
-#include <numbers>
 
-#include "diagnose/fftw_planner.hpp"
+#include "diagnose/welch.hpp"
 
 namespace rigflex::diagnose {
 namespace {
 
 // Welch amplitude spectral density of x (segments of `n` samples).
 Eigen::VectorXd welch(const Eigen::VectorXd& x, int n, double h) {
-  const int bins = n / 2 + 1;
-  Eigen::VectorXd psd = Eigen::VectorXd::Zero(bins);
-  if (x.size() < n) return psd;
-  std::vector<double> in(static_cast<size_t>(n));
-  fftw_complex* out = fftw_alloc_complex(static_cast<size_t>(bins));
-  fftw_plan plan;
-  {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    plan = fftw_plan_dft_r2c_1d(n, in.data(), out, FFTW_ESTIMATE);
-  }
-  Eigen::VectorXd w(n);
-  for (int k = 0; k < n; ++k) w(k) = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * k / n);
-  const double wss = w.squaredNorm();
-  int segments = 0;
-  for (Eigen::Index start = 0; start + n <= x.size(); start += n / 2) {
-    const Eigen::VectorXd seg = x.segment(start, n);
-    const double mean = seg.mean();
-    for (int k = 0; k < n; ++k) in[static_cast<size_t>(k)] = (seg(k) - mean) * w(k);
-    fftw_execute(plan);
-    for (int k = 0; k < bins; ++k) psd(k) += (out[k][0] * out[k][0] + out[k][1] * out[k][1]);
-    ++segments;
-  }
-  {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    fftw_destroy_plan(plan);
-  }
-  fftw_free(out);
+  const WelchSums w = welch_sums(x, n);
   // One-sided power spectral density, then its square root.
-  psd *= 2.0 * h / (wss * std::max(segments, 1));
-  return psd.cwiseSqrt();
+  return (w.power * (2.0 * h / (w.window_power * std::max(w.segments, 1)))).cwiseSqrt();
 }
 
 double pearson(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {

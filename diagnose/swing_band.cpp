@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "rig/median.hpp"
+
 namespace rigflex::diagnose {
 
 SwingBand swing_band(double step_s, double highest_swing_hz) {
@@ -69,11 +71,8 @@ Eigen::MatrixXd band_filter(const SwingBand& b, const Eigen::MatrixXd& channels,
 
 UniformRecord uniform_record(const Eigen::VectorXd& t, const Eigen::MatrixXd& channels) {
   if (t.size() < 4) throw std::invalid_argument("a record needs at least four samples");
-  std::vector<double> d(static_cast<size_t>(t.size() - 1));
-  for (Eigen::Index k = 0; k + 1 < t.size(); ++k) d[static_cast<size_t>(k)] = t(k + 1) - t(k);
-  std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
   UniformRecord u;
-  u.step_s = d[d.size() / 2];
+  u.step_s = rig::median_step(t);
   if (!(u.step_s > 0)) throw std::invalid_argument("time must increase");
   const Eigen::Index n = static_cast<Eigen::Index>(std::floor((t(t.size() - 1) - t(0)) / u.step_s + 1e-6)) + 1;
   u.t = Eigen::VectorXd::LinSpaced(n, t(0), t(0) + static_cast<double>(n - 1) * u.step_s);

@@ -7,18 +7,12 @@
 #include <vector>
 
 #include "identify/identification.hpp"
+#include "rig/median.hpp"
 #include "rig/pose_fit.hpp"
 #include "rig/skew.hpp"
 
 namespace rigflex::identify {
 namespace {
-
-double median_step(const Eigen::VectorXd& t) {
-  std::vector<double> dt(static_cast<size_t>(t.size() - 1));
-  for (Eigen::Index k = 0; k + 1 < t.size(); ++k) dt[static_cast<size_t>(k)] = t(k + 1) - t(k);
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  return dt[dt.size() / 2];
-}
 
 // Stretches of uniform sampling: a step more than half a sample off the
 // median (a dropped sample, a logger pause) ends one. Smaller deviations
@@ -32,7 +26,7 @@ struct UniformStretches {
 
 UniformStretches uniform_stretches(const Eigen::VectorXd& t) {
   const Eigen::Index S = t.size();
-  const double h_median = median_step(t);
+  const double h_median = rig::median_step(t);
   UniformStretches u;
   u.start.resize(static_cast<size_t>(S));
   u.start[0] = 0;

@@ -60,10 +60,11 @@ py::object compare(const rig::RigModel& model, const Histories& records, bool ho
 }
 
 py::object diagnose_rig(const rig::RigModel& model, const Histories& records, const std::vector<std::string>& only,
-                        int max_effects, int threads) {
+                        int max_effects, double period_tolerance, int threads) {
   diagnose::DiagnosisOptions o;
   o.effects = only;
   if (max_effects > 0) o.max_effects = max_effects;
+  o.period_tolerance = period_tolerance;
   o.threads = threads;
   o.validate();
   diagnose::Diagnosis d;
@@ -82,9 +83,12 @@ void bind_diagnose(py::module_& m) {
         "mass properties refitted (not with hold_body), errors per channel and history, residual analysis and the "
         "identification - compare.json's document, with the model's channels per history ('model_channels').");
   m.def("diagnose", &diagnose_rig, py::arg("rig"), py::arg("records"), py::arg("only") = std::vector<std::string>{},
-        py::arg("max_effects") = 0, py::arg("threads") = 0,
+        py::arg("max_effects") = 0, py::arg("period_tolerance") = diagnose::DiagnosisOptions{}.period_tolerance,
+        py::arg("threads") = 0,
         "Which catalogue effect the records hold that the rig lacks: every candidate fitted with the body, ranked, "
-        "tested, chained - diagnosis.json's document ('summary', 'missing_effect', 'ranking', 'chain', ...).");
+        "tested, chained - diagnosis.json's document ('summary', 'missing_effect', 'ranking', 'chain', ...). "
+        "period_tolerance: the swing period error the records' simulator may have, allowed in the gate "
+        "('baseline': 'gate', 'numerics_allowance'); 0 for records from a real rig.");
 }
 
 }  // namespace rigflex::python

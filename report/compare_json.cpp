@@ -249,8 +249,11 @@ Json diagnosis_json(const diagnose::Diagnosis& d, const CompareContext& x) {
   j["missing_effect"] = d.missing_effect ? Json(*d.missing_effect) : Json(nullptr);
   j["indistinguishable"] = d.indistinguishable;
   j["summary"] = d.summary;
-  j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)}, {"band_samples", d.samples},
-                   {"independent_share", finite_or_null(d.independence)}};
+  j["baseline"] = {{"residual_to_noise", finite_or_null(d.noise_ratio)},
+                   {"band_samples", d.samples},
+                   {"independent_share", finite_or_null(d.independence)},
+                   {"gate", finite_or_null(d.noise_gate)},
+                   {"numerics_allowance", finite_or_null(d.numerics_ratio)}};
   j["body"] = body_offsets_json(d.body);
   Json off = Json::array();
   for (const auto& p : d.parameters_off) off.push_back(p.name);

@@ -324,7 +324,8 @@ void verdict_section(HtmlReport& r, const diagnose::Diagnosis& d, const CompareC
               ".\nEffects the model has (not tested): " + joined(d.present, "none") +
               ".\nBaseline residual: " + fmt("%.3g", d.noise_ratio) + " × the noise (1: at the noise), over " +
               fmt("%.0f", d.samples) + " band samples × channels, independent share " + fmt("%.3g", d.independence) +
-              ".");
+              ".\nGate: " + fmt("%.3g", d.noise_gate) + " × the noise (the noise, and a simulator's period error: " +
+              fmt("%.3g", d.numerics_ratio) + " × here); below it no effect is significant.");
 }
 
 // A YAML block for a paragraph, whose style (pre-line) would collapse the

@@ -183,6 +183,9 @@ def test_compare_and_diagnose_on_clean_records():
                                                                                             3 * rig.rods)
     found = rigflex.diagnose(rig, records)
     assert found["missing_effect"] is None, found["summary"]
+    assert found["baseline"]["gate"] == 1 + max(3.0, found["baseline"]["numerics_allowance"])
+    strict = rigflex.diagnose(rig, records, period_tolerance=0.0)
+    assert strict["baseline"]["numerics_allowance"] == 0.0 and strict["baseline"]["gate"] == 4.0
 
 
 def test_long_calls_release_the_gil():

@@ -24,7 +24,14 @@
 // contract's lowest typical rate: the model's step had been the sample
 // interval there, whose period error (7.5e-5) a rod length error of
 // 0.15 mm mimicked on the clean records (rig/generalized_alpha.hpp,
-// kMaxStep).
+// kMaxStep). At1000Hz runs them at 1000 Hz, the contract's highest typical
+// rate, where the band's noise density is half of 500 Hz's: the clean
+// control's own simulator (BDF at its default tolerance) then left 6.6 x
+// the noise, above the old fixed gate of 4 x, and a carrying frame's
+// flexibility was named; the gate now takes what a swing period error of
+// DiagnosisOptions::period_tolerance leaves in the records at hand
+// (diagnose/period_allowance.hpp). The rod length error, whose signature
+// is such a period error, must still be found there.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -55,15 +62,17 @@ void check_case(const std::string& name, double noise_corner_hz, double sample_r
   const rig::RigModel start = test::users_model(nominal, data, seed);
   const diagnose::Diagnosis d = diagnose::diagnose(start, record_pointers(data), {}, {});
   std::cout << name << ": start CoG off by " << 1e3 * (start.body.cog - truth.body.cog).transpose() << " mm; "
-            << d.summary << " (" << d.noise_ratio << " x noise)\n";
+            << d.summary << " (" << d.noise_ratio << " x noise, the gate " << d.noise_gate << ")\n";
   for (const auto& e : d.ranking) {
     std::cout << "   " << e.effect << " " << e.explained_fraction << (e.significant ? " significant" : "") << "\n";
   }
   if (control) {
     EXPECT_FALSE(d.missing_effect.has_value()) << *d.missing_effect;
-    // The model as it is reaches the noise (diagnose's gate, DiagnosisOptions::noise_excess).
+    // The model as it is reaches the noise (diagnose's gate: DiagnosisOptions::noise_excess,
+    // or more where the records' band is quiet - above 500 Hz).
     if (noise_corner_hz > 0 || sample_rate_hz > 0) {
-      EXPECT_LE(d.noise_ratio, 1.0 + diagnose::DiagnosisOptions{}.noise_excess);
+      const double floor = 1.0 + diagnose::DiagnosisOptions{}.noise_excess;
+      EXPECT_LE(d.noise_ratio, sample_rate_hz > 500 ? d.noise_gate : floor) << d.noise_gate;
     }
     return;
   }
@@ -123,6 +132,12 @@ class SampleRate : public ::testing::TestWithParam<std::string> {};
 TEST_P(SampleRate, TheHiddenEffectIsNamedAndAddingItWorks) { check_case(GetParam(), 0.0, 100.0); }
 
 INSTANTIATE_TEST_SUITE_P(At100Hz, SampleRate, ::testing::Values("none", "rod_length_error"));
+
+class HighSampleRate : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HighSampleRate, TheHiddenEffectIsNamedAndAddingItWorks) { check_case(GetParam(), 0.0, 1000.0); }
+
+INSTANTIATE_TEST_SUITE_P(At1000Hz, HighSampleRate, ::testing::Values("none", "rod_length_error"));
 
 INSTANTIATE_TEST_SUITE_P(RealisticStart, UncertainBody,
                          ::testing::Values("none", "below_noise", "rod_compliance", "rod_length_error",

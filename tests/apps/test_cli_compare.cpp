@@ -3,6 +3,7 @@
 // line and key or column.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -173,14 +174,26 @@ TEST(CliDiagnose, ReportsTheRodsStiffnessOff) {
   EXPECT_TRUE(j["ranking"].empty()) << j["ranking"];
   EXPECT_NE(r.out.find("no candidate was fitted"), std::string::npos) << r.out;
   EXPECT_NE(j["ranking_note"].get<std::string>().find("reaches the noise"), std::string::npos);
-  const CliRun all = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
-                         " --only rod_compliance --rank-all --quiet --out " + (dir / "all").string());
+  // The gate: 1 + the larger of 3 and what the default period tolerance leaves here.
+  const double allowance = j["baseline"]["numerics_allowance"].get<double>();
+  EXPECT_GT(allowance, 0.0);
+  EXPECT_DOUBLE_EQ(j["baseline"]["gate"].get<double>(), 1.0 + std::max(3.0, allowance));
+  const CliRun all =
+      run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
+          " --only rod_compliance --rank-all --period-tolerance 0 --quiet --out " + (dir / "all").string());
   ASSERT_EQ(all.code, 0) << all.out;
   const auto ja = read_json(dir / "all" / "diagnosis.json");
+  EXPECT_EQ(ja["baseline"]["numerics_allowance"].get<double>(), 0.0);
+  EXPECT_EQ(ja["baseline"]["gate"].get<double>(), 4.0);
   ASSERT_EQ(ja["ranking"].size(), 1u) << ja["ranking"];
   EXPECT_EQ(ja["ranking"][0]["effect"], "rod_compliance");
   EXPECT_EQ(ja["ranking"][0]["significant"], false);
   EXPECT_EQ(ja["ranking_note"], "");
+  const CliRun negative = run("diagnose " + (dir / "rig.yaml").string() + " " + (dir / "data" / "set1").string() +
+                              " --period-tolerance -1e-5 --out " + (dir / "y").string());
+  EXPECT_NE(negative.code, 0) << negative.out;
+  EXPECT_NE(negative.out.find("--period-tolerance"), std::string::npos) << negative.out;
+  EXPECT_FALSE(fs::exists(dir / "y"));
   // Rigid rods have no stiffness to be unsure of: file, line and key.
   std::ofstream(dir / "bad.yaml") << kCompareRig << "rods: {damping: 10, uncertainty: {stiffness: 0.1}}\n";
   const CliRun bad = run("diagnose " + (dir / "bad.yaml").string() + " " + (dir / "data" / "set1").string() +
