@@ -209,13 +209,13 @@ inline void add_coloured_noise(Eigen::MatrixXd& x, double sigma, double corner_h
   }
 }
 
-// One set of six histories of 15 s (random pushes, the rig file's sensor
-// noise; with noise_corner_hz > 0 that noise through a first-order low-pass
-// at that corner, its RMS as the rig file states it).
+// One set of `histories` histories of 15 s (random pushes, the rig file's
+// sensor noise; with noise_corner_hz > 0 that noise through a first-order
+// low-pass at that corner, its RMS as the rig file states it).
 inline std::vector<rig::Record> measure_histories(const rig::RigModel& truth, std::uint64_t seed,
-                                                  double noise_corner_hz = 0) {
+                                                  double noise_corner_hz = 0, int histories = 6) {
   rig::MeasurementOptions o;
-  o.histories = 6;
+  o.histories = histories;
   o.seed = seed;
   if (!(noise_corner_hz > 0)) return rig::simulate_measurement(rig::RigSystem(truth), o).front();
   rig::RigModel clean = truth;
