@@ -21,9 +21,10 @@ namespace rigflex::diagnose {
 // The noise-weighted sum of squares over the band samples of `targets`
 // that a relative period error `period_error` of every swing would leave
 // once each record's phase is refitted: per record, eps (t - t0) dy/dt of
-// the measured band signals, minus its projection on dy/dt (the constant
-// phase shift the swing states absorb), weighted as the fits weigh the
-// residual. period_error >= 0; 0 gives 0.
+// the measured band signals (BandTarget::measured and the record beside
+// it), minus its projection on dy/dt (the constant phase shift the swing
+// states absorb), weighted as the fits weigh the residual.
+// period_error >= 0; 0 gives 0.
 double period_error_residual(const std::vector<const BandTarget*>& targets, double period_error);
 
 }  // namespace rigflex::diagnose

@@ -21,6 +21,7 @@ BandTarget sinusoid_target(double amplitude, double hz) {
   b.record.channels = (2 * std::numbers::pi * hz * b.record.t).array().sin().matrix() * amplitude;
   b.band = swing_band(h, hz);
   b.at = band_samples(b.band, n);
+  b.measured = band_filter(b.band, b.record.channels, b.at);
   b.weight = Eigen::VectorXd::Ones(1);
   return b;
 }
