@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 
+#include "rig/effects.hpp"
+
 namespace rigflex::diagnose {
 
 namespace {
@@ -62,7 +64,7 @@ BodyParameters body_parameters(const rig::RigModel& model) {
 namespace {
 
 // Each effect with stated uncertainties rebuilt from its parameters plus
-// their offsets, in its place among the model's effects. An effect a fit
+// their offsets, in its place among the model's effects (a frame: scaled). An effect a fit
 // moves outside what its kind accepts throws, as any rig the fit cannot
 // simulate (the fits treat that step as failed).
 void refit_effects(rig::RigModel& m, const BodyParameters& p, const Eigen::VectorXd& delta) {
@@ -80,6 +82,14 @@ void refit_effects(rig::RigModel& m, const BodyParameters& p, const Eigen::Vecto
     }
     first += n;
     if (!moved) continue;
+    if (u.frame_stiffness) {
+      // Kept positive as the rods' factor is (model_with).
+      const double factor = std::max(1.0 + d(0) / 100.0, 1e-3);
+      for (auto& e : m.effects) {
+        if (u.effect == e->name()) e = rig::stiffened(*e, factor);
+      }
+      continue;
+    }
     const rig::EffectKind& kind = *rig::find_effect_kind(u.effect);
     auto rebuilt = kind.parse(rig::with_offsets(u, d), rig::parse_context(m, u.effect));
     for (auto& e : m.effects) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <stdexcept>
 
 #include "rig/effect_kinds.hpp"
 #include "rig/effect_ranges.hpp"
@@ -50,10 +51,37 @@ double within_range(const EffectUncertainty::Item& it, double x) {
 }
 
 // A frame is rebuilt from its files or its joint-compliance map, which a
-// refit would have to reread at every probe: held as given.
+// refit would have to reread at every probe: its numbers are held as given,
+// and only a common factor on its stiffness is refitted.
 bool is_frame(const EffectKind& kind) {
   return std::any_of(kind.parameters.begin(), kind.parameters.end(),
                      [](const ParameterSpec& p) { return p.shape == ParameterShape::map; });
+}
+
+EffectUncertainty frame_uncertainty(const EffectKind& kind, const ParameterValue& u, int key_line,
+                                    const ParameterValue& tree, int rods) {
+  if (u.kind != Kind::map || u.entries.size() != 1 || u.entries.front().key != "stiffness") {
+    const int line = u.kind == Kind::map && !u.entries.empty() ? u.entries.front().key_line : key_line;
+    throw ParameterError(line, "uncertainty",
+                         "a frame's model is held as given but for one factor on its stiffness: expected "
+                         "{stiffness: s}, s its relative standard deviation (e.g. 0.15)");
+  }
+  const ParameterValue& v = u.entries.front().value;
+  const double s = standard_deviation(v, "uncertainty.stiffness");
+  if (!(s < 1)) ParameterReader::fail(v, "uncertainty.stiffness", "must be below 1 (a relative standard deviation)");
+  EffectUncertainty out;
+  out.effect = kind.name;
+  out.rods = rods;
+  out.frame_stiffness = true;
+  out.parameters = tree;
+  EffectUncertainty::Item item;
+  item.key = "stiffness";
+  item.unit = "%";
+  item.sigma = 100.0 * s;
+  item.low = -100.0;
+  item.low_open = true;
+  out.items.push_back(item);
+  return out;
 }
 
 // A key's numbers: one, or one per rod; empty for anything else.
@@ -115,9 +143,7 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
   const ParameterValue u = at->value;
   const int key_line = at->key_line;
   tree.entries.erase(at);
-  if (is_frame(kind)) {
-    throw ParameterError(key_line, "uncertainty", "a frame's parameters are held as given: not refitted");
-  }
+  if (is_frame(kind)) return frame_uncertainty(kind, u, key_line, tree, rods);
   if (u.kind != Kind::map || u.entries.empty()) {
     ParameterReader::fail(u.line ? u : tree, "uncertainty",
                           "expected a mapping of parameter key to standard deviation, e.g. {mass: 0.5}");
@@ -166,6 +192,7 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
 }
 
 ParameterValue with_offsets(const EffectUncertainty& u, const Eigen::VectorXd& delta) {
+  if (u.frame_stiffness) throw std::logic_error("with_offsets: a frame's stiffness factor scales the built frame");
   ParameterValue p = u.parameters;
   for (size_t i = 0; i < u.items.size(); ++i) {
     const EffectUncertainty::Item& it = u.items[i];

@@ -43,11 +43,17 @@ struct EffectUncertainty {
   ParameterValue parameters;  // the effect's parameters as the file gives them, `uncertainty` taken out
   int rods = 0;
   std::vector<Item> items;
+  // A frame (files, joint-compliance maps): its one item is a common factor
+  // on the frame's stiffness, its offset in % (rig::stiffened), as the
+  // rods' stiffness is refitted (rods.uncertainty.stiffness): one number
+  // for the give a frame model leaves out (bolted joints, welds, a floor).
+  bool frame_stiffness = false;
 };
 
 // Takes `uncertainty` out of an effect's parameter tree (which the effect's
 // own parse then reads without it) and checks it against the kind; none if
-// the tree has none. Throws ParameterError naming the line and key
+// the tree has none. A frame takes `{stiffness: s}` only, s the relative
+// standard deviation of its stiffness (0 < s < 1). Throws ParameterError naming the line and key
 // ("uncertainty.mass") relative to the effect. A refitted value is held
 // within the key's physical range for a rig of these `scales`
 // (rig/effect_ranges.hpp; unknown sizes leave the scaled ends open).

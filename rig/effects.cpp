@@ -1,6 +1,7 @@
 #include "rig/effects.hpp"
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,23 @@ void CarryingFrameFlexibility::validate(int rods) const {
   require(model_.psi.rows() == 3 * rods, "effects.carrying_frame_flexibility", "joint rows do not match the rod count");
   require(model_.omega2.size() == model_.psi.cols() && (model_.omega2.array() > 0).all(),
           "effects.carrying_frame_flexibility", "elastic modes must have positive stiffness");
+}
+
+std::shared_ptr<const Effect> stiffened(const Effect& frame, double factor) {
+  require(factor > 0 && std::isfinite(factor), frame.name(), "a stiffness factor must be positive");
+  if (const auto* f = dynamic_cast<const FixedFrameFlexibility*>(&frame)) {
+    FixedFrameModel m = f->model();
+    m.K *= factor;
+    m.C *= std::sqrt(factor);
+    return std::make_shared<FixedFrameFlexibility>(std::move(m));
+  }
+  if (const auto* c = dynamic_cast<const CarryingFrameFlexibility*>(&frame)) {
+    CarryingFrameModel m = c->model();
+    m.omega2 *= factor;
+    m.damping *= std::sqrt(factor);
+    return std::make_shared<CarryingFrameFlexibility>(std::move(m));
+  }
+  throw std::invalid_argument(std::string(frame.name()) + ": not a built frame, its stiffness cannot be scaled");
 }
 
 void RodCompliance::validate(int rods) const {

@@ -2,6 +2,7 @@
 // The catalogue of physical effects, under the names of
 // shared/spec/rig-conventions.md. Per-rod parameters are vectors of length n.
 // How a rig file states each one and how diagnose fits it: rig/effect_kinds.hpp.
+#include <memory>
 #include <vector>
 
 #include "rig/effect.hpp"
@@ -26,10 +27,21 @@ class CarryingFrameFlexibility : public Effect {
   const char* name() const override { return "carrying_frame_flexibility"; }
   void validate(int rods) const override;
   void build(RigAssembly& a) const override { a.carrying_frame = model_; }
+  const CarryingFrameModel& model() const { return model_; }
 
  private:
   CarryingFrameModel model_;
 };
+
+// The frame `frame` (a built fixed or carrying frame) with its stiffness
+// times `factor` > 0: K, or the carrying frame's modal stiffness, the mass
+// held and the damping times sqrt(factor), which keeps every mode's damping
+// ratio (a frame's damping is modal, or Rayleigh fitted to two of its modes:
+// both scale so when the frequencies do). What
+// diagnose refits where a frame states its stiffness's uncertainty
+// (rig/effect_uncertainty.hpp). std::invalid_argument for another effect
+// (a frame not yet resolved from its files is one) or a factor <= 0.
+std::shared_ptr<const Effect> stiffened(const Effect& frame, double factor);
 
 // Axial stiffness of each rod (N/m), EA/L or given; without this effect the rods are rigid.
 class RodCompliance : public Effect {

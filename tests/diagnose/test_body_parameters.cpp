@@ -3,6 +3,8 @@
 // lands on the component it names.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "diagnose/body_parameters.hpp"
 #include "rig/rig_system.hpp"
 #include "support/rig_cases.hpp"
@@ -120,6 +122,38 @@ TEST(BodyParameters, AnEffectsParametersWhereTheirUncertaintyIsStated) {
     EXPECT_DOUBLE_EQ(held.assembly().rod_mass[static_cast<size_t>(i)], 2.0);
   }
   EXPECT_EQ(out.body.cog, m.body.cog);
+}
+
+// A frame that states how well its stiffness is known: one component, a
+// factor on the built frame's stiffness in %, which moves K by that factor
+// and its damping by the factor's root (each mode's damping ratio kept),
+// and leaves its mass, the body and the rods as they were.
+TEST(BodyParameters, AFramesStiffnessWhereItsUncertaintyIsStated) {
+  using V = rig::ParameterValue;
+  rig::RigModel m = test::noisy_trifilar();
+  m.body_uncertainty.cog = rig::Vec3(0.003, 0.0, 0.0);
+  m.body_uncertainty.inertia = std::array<double, 6>{0, 0, 0, 0, 0, 0};
+  const V joint = V::of(std::vector<double>{1e-7, 1e-7, 1e-8});
+  test::add_effect(m, "fixed_frame_flexibility",
+                   V::map()
+                       .set("joint_compliance", V::map().set("joints", V::list({joint, joint, joint})))
+                       .set("uncertainty", V::map().set("stiffness", V::of(0.2))));
+  const diagnose::BodyParameters p = diagnose::body_parameters(m);
+  ASSERT_EQ(p.components, (std::vector<int>{0, diagnose::BodyParameters::kEffectItems}));
+  EXPECT_EQ(p.parameters[1].name, "effects.fixed_frame_flexibility.stiffness");
+  EXPECT_EQ(p.parameters[1].unit, "%");
+  EXPECT_DOUBLE_EQ(p.sigma(1), 20.0);
+  const rig::RigModel out = diagnose::model_with(m, p, Eigen::Vector2d(0.0, -25.0));
+  ASSERT_EQ(out.effects.size(), 1u);
+  const rig::RigSystem moved(out), held(m);
+  const rig::FixedFrameModel& a = *moved.assembly().fixed_frame;
+  const rig::FixedFrameModel& b = *held.assembly().fixed_frame;
+  EXPECT_TRUE(a.K.isApprox(0.75 * b.K, 1e-14));
+  EXPECT_EQ(a.M, b.M);
+  EXPECT_TRUE(a.C.isApprox(std::sqrt(0.75) * b.C, 1e-14));
+  EXPECT_EQ(out.body.cog, m.body.cog);
+  // Nothing moved: the model's own frame, not a copy scaled by 1.
+  EXPECT_EQ(diagnose::model_with(m, p, Eigen::Vector2d(0.001, 0.0)).effects.front(), m.effects.front());
 }
 
 }  // namespace

@@ -407,6 +407,23 @@ TEST(RigReader, EffectUncertaintyIsReadBesideTheEffect) {
   EXPECT_EQ(rig_of(again).effect_uncertainty.size(), 1u);
 }
 
+// A frame states one relative deviation of its stiffness: one item, in %,
+// refitted as a factor on the built frame (rig::stiffened).
+TEST(RigReader, AFramesStiffnessUncertainty) {
+  const std::string text = std::string(kValidRig) +
+                           "  carrying_frame_flexibility:\n    joint_compliance: {translation: [1e-7, 1e-7, 1e-8]}\n"
+                           "    uncertainty: {stiffness: 0.15}\n";
+  const rig::RigModel m = rig_of(text);
+  ASSERT_EQ(m.effect_uncertainty.size(), 1u);
+  const rig::EffectUncertainty& u = m.effect_uncertainty[0];
+  EXPECT_EQ(u.effect, "carrying_frame_flexibility");
+  EXPECT_TRUE(u.frame_stiffness);
+  ASSERT_EQ(u.items.size(), 1u);
+  EXPECT_EQ(u.items[0].name(), "stiffness");
+  EXPECT_EQ(u.items[0].unit, "%");
+  EXPECT_DOUBLE_EQ(u.items[0].sigma, 15.0);
+}
+
 TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
   const std::string rig = kValidRig;
   expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: {weight: 0.3}}\n", "rod_mass",
@@ -424,7 +441,13 @@ TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
                    "  rod_length_error: {delta: 0.001, uncertainty: {delta: [0.001, 0.001, 0.001]}}\n"
                    "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, "
                    "1e-8], [1e-7, 1e-7, 1e-8]]}\n    uncertainty: {zeta: 0.01}\n",
-               "    uncertainty: {zeta", "effects.fixed_frame_flexibility.uncertainty", "frame's parameters are held");
+               "    uncertainty: {zeta", "effects.fixed_frame_flexibility.uncertainty",
+               "held as given but for one factor on its stiffness");
+  expect_error(rig +
+                   "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, "
+                   "1e-8], [1e-7, 1e-7, 1e-8]]}\n    uncertainty: {stiffness: 1.0}\n",
+               "    uncertainty: {stiffness", "effects.fixed_frame_flexibility.uncertainty.stiffness",
+               "below 1 (a relative standard deviation)");
   // A key the effect does not give, and which has no default, has nothing to refit.
   expect_error(rig + "  rod_compliance: {stiffness: 1e7, uncertainty: {youngs_modulus: 1e9}}\n", "rod_compliance",
                "effects.rod_compliance.uncertainty.youngs_modulus", "gives no 'youngs_modulus' to refit");
