@@ -98,10 +98,26 @@ std::vector<double> numbers(const ParameterValue& v) {
 
 }  // namespace
 
+// A frame's fitted compliances as one factor on its stiffness: each
+// compliance c_i +- sigma_i measures a common scale of them to a relative
+// sigma_i / c_i, all of them together (correlations neglected, as for the
+// other kinds) to 1 / sqrt(sum (c_i / sigma_i)^2) - to first order the
+// stiffness's relative deviation too. None where that reaches 1 (the fit
+// does not determine the frame's size) or nothing was fitted.
+std::optional<ParameterValue> frame_fitted_uncertainty(const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
+  if (std.size() != theta.size()) return std::nullopt;
+  double information = 0;
+  for (Eigen::Index i = 0; i < theta.size(); ++i) {
+    if (theta(i) > 0 && std(i) > 0 && std::isfinite(std(i))) information += (theta(i) / std(i)) * (theta(i) / std(i));
+  }
+  if (!(information > 1) || !std::isfinite(information)) return std::nullopt;
+  return ParameterValue::map().set("stiffness", ParameterValue::of(1.0 / std::sqrt(information)));
+}
+
 std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
                                                  const std::function<ParameterValue(const Eigen::VectorXd&)>& write,
                                                  const Eigen::VectorXd& theta, const Eigen::VectorXd& std) {
-  if (is_frame(kind)) return std::nullopt;
+  if (is_frame(kind)) return frame_fitted_uncertainty(theta, std);
   const ParameterValue at = write(theta);
   if (at.kind != Kind::map || std.size() != theta.size()) return std::nullopt;
   std::vector<ParameterValue> moved;  // write() one standard deviation along each parameter

@@ -66,8 +66,9 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
 // per parameter of theta) to first order, over one standard deviation of
 // each parameter, their correlations neglected. Keys the fit leaves
 // unchanged, or changes for some rods only, get none; none at all where no
-// key has one, and none for a frame (held as given). diagnose writes it into its effects files, so the effect,
-// once added, is refitted by later fits like any value the user states.
+// key has one; for a frame (its fitted compliances) the relative deviation
+// of a common factor on them, as `{stiffness: s}` (none where s >= 1). diagnose writes it into its effects files, so
+// the effect, once added, is refitted by later fits like any value the user states.
 std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
                                                  const std::function<ParameterValue(const Eigen::VectorXd&)>& write,
                                                  const Eigen::VectorXd& theta, const Eigen::VectorXd& std);

@@ -83,7 +83,8 @@ TEST(EffectCandidates, EveryEffectBuildsAtItsProbe) {
     EXPECT_NO_THROW(e->validate(3)) << c.effect;
     EXPECT_FALSE(c.rig_block(probe, {}).empty());
     // With the fit's deviations: an `uncertainty` mapping wherever the kind
-    // has a key of one number or one per rod (rig::fitted_uncertainty).
+    // has a key of one number or one per rod, or is a frame (its stiffness;
+    // rig::fitted_uncertainty).
     const rig::EffectKind& kind = *rig::find_effect_kind(c.effect);
     const bool refittable = std::any_of(kind.parameters.begin(), kind.parameters.end(), [](const auto& p) {
       return p.shape == rig::ParameterShape::number || p.shape == rig::ParameterShape::per_rod;
@@ -91,7 +92,10 @@ TEST(EffectCandidates, EveryEffectBuildsAtItsProbe) {
     const bool frame = std::any_of(kind.parameters.begin(), kind.parameters.end(),
                                    [](const auto& p) { return p.shape == rig::ParameterShape::map; });
     const std::string block = c.rig_block(probe, 0.1 * probe.cwiseAbs());
-    EXPECT_EQ(block.find("uncertainty:") != std::string::npos, refittable && !frame) << block;
+    EXPECT_EQ(block.find("uncertainty:") != std::string::npos, refittable || frame) << block;
+    if (frame) {
+      EXPECT_NE(block.find("stiffness:"), std::string::npos) << block;
+    }
   }
   EXPECT_EQ(cands[0].make(Eigen::VectorXd::Zero(static_cast<Eigen::Index>(cands[0].parameters.size()))), nullptr);
   EXPECT_EQ(cands[2].make(Eigen::VectorXd::Zero(1)), nullptr);

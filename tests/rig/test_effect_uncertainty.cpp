@@ -4,6 +4,8 @@
 // parameter's physical range.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "rig/effect_kinds.hpp"
 #include "rig/effect_uncertainty.hpp"
 
@@ -129,4 +131,27 @@ TEST(EffectUncertainty, FittedUncertaintyIsPropagatedFromTheFit) {
   const rig::EffectKind& joints = *rig::find_effect_kind("joint_position_error");
   auto upper = [](const Eigen::VectorXd& p) { return V::map().set("upper", V::list({V::of(p), V::of(p), V::of(p)})); };
   EXPECT_FALSE(rig::fitted_uncertainty(joints, upper, Eigen::Vector3d(1e-3, 0, 0), Eigen::Vector3d(1e-4, 1e-4, 1e-4)));
+}
+
+// A frame's fitted compliances give one relative deviation of its
+// stiffness: 1 / sqrt(sum (c_i / sigma_i)^2) over the compliances fitted
+// above zero (here 2e-6 +- 1e-7 and 3e-6 +- 3e-7: 20 and 10, so 1/sqrt(500));
+// it reads back as the frame's `{stiffness: s}`. A fit that does not fix
+// the frame's size (s >= 1) or fitted nothing gives none.
+TEST(EffectUncertainty, AFramesFittedStiffnessUncertainty) {
+  const rig::EffectKind& frame = *rig::find_effect_kind("carrying_frame_flexibility");
+  auto map = [](const Eigen::VectorXd&) { return V::map(); };  // a frame's block is not read for this
+  const Eigen::VectorXd theta = (Eigen::VectorXd(5) << 2e-6, 3e-6, 0.0, 0.0, 0.0).finished();
+  const Eigen::VectorXd sd = (Eigen::VectorXd(5) << 1e-7, 3e-7, 1e-7, 1e-7, 1e-7).finished();
+  const auto u = rig::fitted_uncertainty(frame, map, theta, sd);
+  ASSERT_TRUE(u);
+  EXPECT_NEAR(number(*u, "stiffness"), 1.0 / std::sqrt(500.0), 1e-15);
+  V tree = V::map().set("uncertainty", *u);
+  const auto back = rig::take_uncertainty(frame, tree, 3);
+  ASSERT_TRUE(back);
+  EXPECT_TRUE(back->frame_stiffness);
+  EXPECT_NEAR(back->items[0].sigma, 100.0 / std::sqrt(500.0), 1e-12);
+  // Every compliance at 0.4 of its deviation: s = 1 / sqrt(5 x 0.16) > 1, none; nothing fitted: none.
+  EXPECT_FALSE(rig::fitted_uncertainty(frame, map, 0.4 * sd, sd));
+  EXPECT_FALSE(rig::fitted_uncertainty(frame, map, Eigen::VectorXd::Zero(5), sd));
 }
