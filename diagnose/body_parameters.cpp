@@ -63,6 +63,11 @@ BodyParameters body_parameters(const rig::RigModel& model) {
 
 namespace {
 
+// A stiffness's factor from its fitted offset in %. A fit far past the
+// prior may ask for a stiffness below nothing: the factor is kept positive
+// (a rig can then still be simulated, and the prior and the data push back).
+double stiffness_factor(double offset_percent) { return std::max(1.0 + offset_percent / 100.0, 1e-3); }
+
 // Each effect with stated uncertainties rebuilt from its parameters plus
 // their offsets, in its place among the model's effects (a frame: scaled). An effect a fit
 // moves outside what its kind accepts throws, as any rig the fit cannot
@@ -83,10 +88,8 @@ void refit_effects(rig::RigModel& m, const BodyParameters& p, const Eigen::Vecto
     first += n;
     if (!moved) continue;
     if (u.frame_stiffness) {
-      // Kept positive as the rods' factor is (model_with).
-      const double factor = std::max(1.0 + d(0) / 100.0, 1e-3);
       for (auto& e : m.effects) {
-        if (u.effect == e->name()) e = rig::stiffened(*e, factor);
+        if (u.effect == e->name()) e = rig::stiffened(*e, stiffness_factor(d(0)));
       }
       continue;
     }
@@ -120,10 +123,7 @@ rig::RigModel model_with(const rig::RigModel& model, const BodyParameters& p, co
   out.body = body_with(model.body, p, delta);
   for (int i = 0; i < p.size(); ++i) {
     if (p.components[i] != kRodStiffness) continue;
-    // A fit far past the prior may ask for rods softer than nothing: the
-    // factor is kept positive (a rig can then still be simulated, and the
-    // prior and the data push back).
-    const double factor = std::max(1.0 + delta(i) / 100.0, 1e-3);
+    const double factor = stiffness_factor(delta(i));
     for (double& k : out.rods.stiffness) k *= factor;
   }
   refit_effects(out, p, delta);

@@ -96,8 +96,6 @@ std::vector<double> numbers(const ParameterValue& v) {
   return out;
 }
 
-}  // namespace
-
 // A frame's fitted compliances as one factor on its stiffness: each
 // compliance c_i +- sigma_i measures a common scale of them to a relative
 // sigma_i / c_i, all of them together (correlations neglected, as for the
@@ -113,6 +111,8 @@ std::optional<ParameterValue> frame_fitted_uncertainty(const Eigen::VectorXd& th
   if (!(information > 1) || !std::isfinite(information)) return std::nullopt;
   return ParameterValue::map().set("stiffness", ParameterValue::of(1.0 / std::sqrt(information)));
 }
+
+}  // namespace
 
 std::optional<ParameterValue> fitted_uncertainty(const EffectKind& kind,
                                                  const std::function<ParameterValue(const Eigen::VectorXd&)>& write,
