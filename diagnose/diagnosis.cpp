@@ -642,8 +642,9 @@ void conclude(Diagnosis& d, const DiagnosisOptions& options) {
   }
 }
 
-// The frames in the model held as given (no stated uncertainty of their
-// stiffness), as "; ..." for a verdict above the noise: a frame stiffer or
+// The frames in the model held as given (no uncertainty of their stiffness:
+// `{stiffness: 0}` in a rig file, or a model built without one), as "; ..."
+// for a verdict above the noise: a frame stiffer or
 // softer than its model shows as other effects (measured on
 // examples/large-rig, its FE fixed frame 40 % too stiff: 1.7e7 x the noise,
 // named rod_compliance and then a carrying frame; with the frame's
@@ -660,7 +661,8 @@ std::string held_frames_note(const rig::RigModel& model) {
   if (held.empty()) return "";
   return "; the model's " + held +
          " held as given: a frame stiffer or softer than its model shows as other effects - state "
-         "effects.<frame>.uncertainty.stiffness (its relative standard deviation) to have its stiffness refitted";
+         "effects.<frame>.uncertainty.stiffness above 0 (its relative standard deviation; without it 0.1) to have "
+         "its stiffness refitted";
 }
 
 }  // namespace

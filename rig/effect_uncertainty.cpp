@@ -58,17 +58,7 @@ bool is_frame(const EffectKind& kind) {
                      [](const ParameterSpec& p) { return p.shape == ParameterShape::map; });
 }
 
-EffectUncertainty frame_uncertainty(const EffectKind& kind, const ParameterValue& u, int key_line,
-                                    const ParameterValue& tree, int rods) {
-  if (u.kind != Kind::map || u.entries.size() != 1 || u.entries.front().key != "stiffness") {
-    const int line = u.kind == Kind::map && !u.entries.empty() ? u.entries.front().key_line : key_line;
-    throw ParameterError(line, "uncertainty",
-                         "a frame's model is held as given but for one factor on its stiffness: expected "
-                         "{stiffness: s}, s its relative standard deviation (e.g. 0.15)");
-  }
-  const ParameterValue& v = u.entries.front().value;
-  const double s = standard_deviation(v, "uncertainty.stiffness");
-  if (!(s < 1)) ParameterReader::fail(v, "uncertainty.stiffness", "must be below 1 (a relative standard deviation)");
+EffectUncertainty frame_stiffness_uncertainty(const EffectKind& kind, double s, const ParameterValue& tree, int rods) {
   EffectUncertainty out;
   out.effect = kind.name;
   out.rods = rods;
@@ -82,6 +72,25 @@ EffectUncertainty frame_uncertainty(const EffectKind& kind, const ParameterValue
   item.low_open = true;
   out.items.push_back(item);
   return out;
+}
+
+// None where the file holds the frame as given ({stiffness: 0}).
+std::optional<EffectUncertainty> frame_uncertainty(const EffectKind& kind, const ParameterValue& u, int key_line,
+                                                   const ParameterValue& tree, int rods) {
+  if (u.kind != Kind::map || u.entries.size() != 1 || u.entries.front().key != "stiffness") {
+    const int line = u.kind == Kind::map && !u.entries.empty() ? u.entries.front().key_line : key_line;
+    throw ParameterError(line, "uncertainty",
+                         "a frame's model is held as given but for one factor on its stiffness: expected "
+                         "{stiffness: s}, s its relative standard deviation (e.g. 0.15)");
+  }
+  const ParameterValue& v = u.entries.front().value;
+  const double s = ParameterReader::as_number(v, "uncertainty.stiffness");
+  if (!(s >= 0 && s < 1)) {
+    ParameterReader::fail(v, "uncertainty.stiffness",
+                          "must lie in [0, 1): a relative standard deviation (0 holds the frame as given)");
+  }
+  if (s == 0) return std::nullopt;
+  return frame_stiffness_uncertainty(kind, s, tree, rods);
 }
 
 // A key's numbers: one, or one per rod; empty for anything else.
@@ -155,7 +164,10 @@ std::optional<EffectUncertainty> take_uncertainty(const EffectKind& kind, Parame
   if (tree.kind != Kind::map) return std::nullopt;
   const auto at = std::find_if(tree.entries.begin(), tree.entries.end(),
                                [](const ParameterEntry& e) { return e.key == "uncertainty"; });
-  if (at == tree.entries.end()) return std::nullopt;
+  if (at == tree.entries.end()) {
+    if (is_frame(kind)) return frame_stiffness_uncertainty(kind, kFrameStiffnessUncertainty, tree, rods);
+    return std::nullopt;
+  }
   const ParameterValue u = at->value;
   const int key_line = at->key_line;
   tree.entries.erase(at);

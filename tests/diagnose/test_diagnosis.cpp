@@ -194,16 +194,20 @@ TEST(Diagnosis, ReportsAFramesStiffnessOffWhereItsUncertaintyIsStated) {
   EXPECT_LE(std::abs(off->value + 40.0), std::max(3 * off->std, 2.0)) << off->value << " +- " << off->std;
 }
 
-// The same frame held as given (no stated uncertainty), 40 % softer in
-// truth, with one candidate to fit: whatever the verdict, it says that the
-// frame is held and how to have its stiffness refitted.
+// The same frame held as given (`uncertainty: {stiffness: 0}`; without it
+// the stiffness is refitted, rig::kFrameStiffnessUncertainty), 40 % softer
+// in truth, with one candidate to fit: whatever the verdict, it says that
+// the frame is held and how to have its stiffness refitted.
 TEST(Diagnosis, AFrameHeldAsGivenIsNamedInAVerdictAboveTheNoise) {
   using V = rig::ParameterValue;
   rig::RigModel start = trifilar();
   const rig::Vec3 joint(3e-6, 6e-6, 2e-6);
   const V listed = V::of(Eigen::VectorXd(joint));
   test::add_effect(start, "fixed_frame_flexibility",
-                   V::map().set("joint_compliance", V::map().set("joints", V::list({listed, listed, listed}))));
+                   V::map()
+                       .set("joint_compliance", V::map().set("joints", V::list({listed, listed, listed})))
+                       .set("uncertainty", V::map().set("stiffness", V::of(0.0))));
+  ASSERT_TRUE(start.effect_uncertainty.empty());
   rig::RigModel truth = trifilar();
   truth.effects.push_back(rig::stiffened(*start.effects.back(), 0.6));
   const diagnose::Diagnosis d = diagnose_two_short_records(start, truth, 17, {"rod_length_error"});

@@ -424,6 +424,26 @@ TEST(RigReader, AFramesStiffnessUncertainty) {
   EXPECT_DOUBLE_EQ(u.items[0].sigma, 15.0);
 }
 
+// A frame that states no uncertainty has its stiffness known to
+// rig::kFrameStiffnessUncertainty; {stiffness: 0} holds it as given. Other
+// effects without one are held.
+TEST(RigReader, AFramesStiffnessUncertaintyByDefault) {
+  const std::string frame =
+      "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, 1e-8], "
+      "[1e-7, 1e-7, 1e-8]]}\n";
+  const rig::RigModel m = rig_of(std::string(kValidRig) + "  rod_mass: {mass: 1.5}\n" + frame);
+  ASSERT_EQ(m.effect_uncertainty.size(), 1u);
+  const rig::EffectUncertainty& u = m.effect_uncertainty[0];
+  EXPECT_EQ(u.effect, "fixed_frame_flexibility");
+  EXPECT_TRUE(u.frame_stiffness);
+  ASSERT_EQ(u.items.size(), 1u);
+  EXPECT_DOUBLE_EQ(u.items[0].sigma, 100.0 * rig::kFrameStiffnessUncertainty);
+  const rig::RigModel held = rig_of(std::string(kValidRig) + frame + "    uncertainty: {stiffness: 0}\n");
+  EXPECT_TRUE(held.effect_uncertainty.empty());
+  EXPECT_TRUE(std::any_of(held.effects.begin(), held.effects.end(),
+                          [](const auto& e) { return e->name() == "fixed_frame_flexibility"; }));
+}
+
 TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
   const std::string rig = kValidRig;
   expect_error(rig + "  rod_mass: {mass: 1.5, uncertainty: {weight: 0.3}}\n", "rod_mass",
@@ -447,7 +467,12 @@ TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
                    "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, "
                    "1e-8], [1e-7, 1e-7, 1e-8]]}\n    uncertainty: {stiffness: 1.0}\n",
                "    uncertainty: {stiffness", "effects.fixed_frame_flexibility.uncertainty.stiffness",
-               "below 1 (a relative standard deviation)");
+               "must lie in [0, 1): a relative standard deviation");
+  expect_error(rig +
+                   "  fixed_frame_flexibility:\n    joint_compliance: {joints: [[1e-7, 1e-7, 1e-8], [1e-7, 1e-7, "
+                   "1e-8], [1e-7, 1e-7, 1e-8]]}\n    uncertainty: {stiffness: -0.1}\n",
+               "    uncertainty: {stiffness", "effects.fixed_frame_flexibility.uncertainty.stiffness",
+               "must lie in [0, 1)");
   // A key the effect does not give, and which has no default, has nothing to refit.
   expect_error(rig + "  rod_compliance: {stiffness: 1e7, uncertainty: {youngs_modulus: 1e9}}\n", "rod_compliance",
                "effects.rod_compliance.uncertainty.youngs_modulus", "gives no 'youngs_modulus' to refit");
