@@ -441,7 +441,7 @@ TEST(RigReader, AFramesStiffnessUncertaintyByDefault) {
   const rig::RigModel held = rig_of(std::string(kValidRig) + frame + "    uncertainty: {stiffness: 0}\n");
   EXPECT_TRUE(held.effect_uncertainty.empty());
   EXPECT_TRUE(std::any_of(held.effects.begin(), held.effects.end(),
-                          [](const auto& e) { return e->name() == "fixed_frame_flexibility"; }));
+                          [](const auto& e) { return std::string(e->name()) == "fixed_frame_flexibility"; }));
 }
 
 TEST(RigReader, EffectUncertaintyThatCannotBeRefitted) {
