@@ -63,9 +63,10 @@ inline constexpr double kFrameStiffnessUncertainty = 0.1;
 
 // Takes `uncertainty` out of an effect's parameter tree (which the effect's
 // own parse then reads without it) and checks it against the kind; none if
-// the tree has none. A frame takes `{stiffness: s}` only, s the relative
-// standard deviation of its stiffness (0 <= s < 1; 0 holds it as given,
-// none stated is kFrameStiffnessUncertainty). Throws ParameterError naming the line and key
+// the tree has none, but for a frame, whose stiffness is then known to
+// kFrameStiffnessUncertainty. A frame takes `{stiffness: s}` only, s the
+// relative standard deviation of its stiffness (0 <= s < 1; 0 holds it as
+// given: none). Throws ParameterError naming the line and key
 // ("uncertainty.mass") relative to the effect. A refitted value is held
 // within the key's physical range for a rig of these `scales`
 // (rig/effect_ranges.hpp; unknown sizes leave the scaled ends open).
