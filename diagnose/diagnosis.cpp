@@ -28,7 +28,6 @@ void DiagnosisOptions::validate() const {
   if (relinearizations < 0) throw std::invalid_argument("relinearizations: must be >= 0");
   if (!(relinearize_gain >= 0 && relinearize_gain < 1))
     throw std::invalid_argument("relinearize_gain: must lie in [0, 1)");
-  if (!(relinearize_floor >= 0)) throw std::invalid_argument("relinearize_floor: must be >= 0");
   if (!(continuation_threshold >= 0 && continuation_threshold <= continuation_ceiling)) {
     throw std::invalid_argument("continuation_threshold: must lie in [0, continuation_ceiling]");
   }
@@ -254,16 +253,9 @@ EffectFit score(const Fitter& fit, const EffectCandidate& c, const CandidateFits
 }
 
 // The fit budget of a fit taken on to convergence (contender_gain, contender_relinearizations).
-// Its gains are shares of what the fit can still explain, the objective
-// above contender_settled x the noise expectation: near the noise a
-// share of the whole objective stops a fit crawling along a valley far
-// short of its end (the carrying frame's records of bench_diagnosis_seeds,
-// seed 5: stopped at 1.19 x the noise, where the fixed frame's fit reached
-// 1.10 and was named; taken on, 0.93 x).
-DiagnosisOptions to_convergence(const DiagnosisOptions& options, const Diagnosis& d) {
+DiagnosisOptions to_convergence(const DiagnosisOptions& options) {
   DiagnosisOptions deep = options;
   deep.relinearize_gain = options.contender_gain;
-  deep.relinearize_floor = options.contender_settled * d.samples;
   deep.relinearizations = options.contender_relinearizations;
   return deep;
 }
@@ -353,7 +345,7 @@ void converge_contenders(Fitter& fit, const std::vector<EffectCandidate>& candid
       contenders.push_back(k);
     }
   }
-  const DiagnosisOptions deep = to_convergence(options, d);
+  const DiagnosisOptions deep = to_convergence(options);
   // Another fit of contender k, kept where it ends below the fit so far.
   auto keep_better = [&](size_t k, FitOutcome more) {
     FitOutcome& o = fits[k].joint;
@@ -497,7 +489,7 @@ void converge_accepted(Fitter& fit, const std::vector<EffectCandidate>& candidat
   const EffectCandidate c = chained_candidate(accepted, &*next);
   progress(options, "the chain, step " + std::to_string(d.chain.size() + 1) + ": converging " + c.effect);
   FitPoint& at = points[first->effect];
-  const DiagnosisOptions deep = to_convergence(options, d);
+  const DiagnosisOptions deep = to_convergence(options);
   try {
     CandidateFits fits{refit_from(fit, c, at, deep), std::nullopt};
     if (!better_fit(fit, fits.joint.at, at)) return;

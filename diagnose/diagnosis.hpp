@@ -46,11 +46,6 @@ struct DiagnosisOptions {
   int refinements = 4;             // chord iterations per linearization
   int relinearizations = 2;        // new linearizations while they gain > relinearize_gain
   double relinearize_gain = 0.10;  // share of the objective (diagnose/joint_fit.cpp); the baseline: at most 1 %
-  // The part of the objective that no fit can remove: gains are shares of
-  // the objective above it, and a fit that reaches it stops. 0 (the
-  // default) measures them against the whole objective; the fits taken on
-  // to convergence use the noise expectation (diagnosis.cpp).
-  double relinearize_floor = 0;
   static constexpr double kBaselineRelinearizeGain = 0.01;
   // An effect that explains at least the threshold's share but less than
   // the ceiling's is fitted again by continuation over the record's length

@@ -218,10 +218,11 @@ Step gauss_newton(const std::vector<Eigen::MatrixXd>& Js, const std::vector<Eige
 
 // Chord steps on the last linearization while they make progress, then a
 // new linearization while that one gained more than options.relinearize_gain
-// of the objective above options.relinearize_floor (a large effect moves the swing's phase by radians over a record,
-// beyond one linearization). Each linearization costs (6 + parameters) simulations per record, most of a fit's time;
-// after one that gained less than 10 % the next gained 0.03-1.6 % on examples/hidden-effect (measured), less than what
-// the candidates' ranking and F tests resolve.
+// (a large effect moves the swing's phase by radians over a record, beyond
+// one linearization). Each linearization costs (6 + parameters) simulations
+// per record, most of a fit's time; after one that gained less than 10 %
+// the next gained 0.03-1.6 % on examples/hidden-effect (measured), less
+// than what the candidates' ranking and F tests resolve.
 FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start, std::vector<Eigen::MatrixXd> Js,
                          std::vector<Eigen::MatrixXd> Jt, const DiagnosisOptions& options) {
   const int n = fit.size(c), nb = fit.body_size();
@@ -298,9 +299,7 @@ FitOutcome fit_nonlinear(Fitter& fit, const EffectCandidate* c, FitPoint start, 
       }
       if (!accepted) break;
     }
-    const double floor = options.relinearize_floor;
-    const bool gained = out.at.cost < cost_before - options.relinearize_gain * (cost_before - floor) &&
-                        (floor == 0 || out.at.cost > floor);
+    const bool gained = out.at.cost < (1.0 - options.relinearize_gain) * cost_before;
     if (!gained || lin == options.relinearizations) break;
     // Linearize again where the fit now stands.
     try {

@@ -1,6 +1,5 @@
 #include "rig/generalized_alpha.hpp"
 
-#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -101,7 +100,7 @@ GeneralizedAlpha::GeneralizedAlpha(const RigSystem& rig, const Linearization& li
 void GeneralizedAlpha::factorize(double h, const Eigen::MatrixXd& K) {
   // d(residual)/d(vdot_{n+1}), multiplied by M: M + h gamma c C + h^2 beta c K.
   const double c = (1.0 - alpha_f_) / (1.0 - alpha_m_);
-  S_inverse_ = Eigen::PartialPivLU<Eigen::MatrixXd>(M_ + h * gamma_ * c * C_ + h * h * beta_ * c * K).inverse();
+  S_.compute(M_ + h * gamma_ * c * C_ + h * h * beta_ * c * K);
   S_step_ = h;
   ++stats_.linear_setups;
 }
@@ -200,8 +199,7 @@ bool GeneralizedAlpha::try_step(double h) {
   const double c = (1.0 - alpha_f_) / (1.0 - alpha_m_);
   const double t1 = t_ + h;
   // Predictor: the acceleration extrapolated linearly from the last two steps.
-  Eigen::VectorXd& vd = vd_;
-  vd = vdot_ + (h / h_last_) * (vdot_ - vdot_previous_);
+  Eigen::VectorXd vd = vdot_ + (h / h_last_) * (vdot_ - vdot_previous_);
   // c1, v1, a1: the state at t + h that the current vd implies.
   Configuration& c1 = trial_;
   Eigen::VectorXd& a1 = a1_;
@@ -221,7 +219,7 @@ bool GeneralizedAlpha::try_step(double h) {
   for (int it = 0;; ++it) {
     update();
     force_residual(c1, v1, vd, t1);
-    delta_.noalias() = S_inverse_ * residual_;
+    delta_ = S_.solve(residual_);
     vd -= delta_;
     ++stats_.newton_iterations;
     // Converged when the correction moves no joint by more than the tolerance.

@@ -18,6 +18,7 @@
 // rate (the swing's period error below 9e-6 up to 1 Hz), and divides the
 // sample interval, so samples are steps, not interpolations.
 #include <Eigen/Core>
+#include <Eigen/LU>
 #include <optional>
 
 #include "rig/integration.hpp"
@@ -58,12 +59,7 @@ class GeneralizedAlpha {
   double h_, tolerance_;
   double alpha_m_, alpha_f_, gamma_, beta_;
   Eigen::MatrixXd M_, C_, K_;
-  // The iteration matrix's inverse: the rig's coordinates are few (6 + the
-  // frames' 3-30), where one dense product costs a fraction of LU's two
-  // triangular solves (30 % of a prediction's time with a frame stand-in,
-  // measured); the iterations evaluate the residual itself, so the
-  // inverse's rounding changes only their contraction, not what they converge to.
-  Eigen::MatrixXd S_inverse_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> S_;
   double S_step_ = 0;
   Eigen::VectorXd joint_scale_;  // joint displacement per unit of each coordinate
   double t_ = 0;
@@ -76,7 +72,7 @@ class GeneralizedAlpha {
   RigSystem::Workspace work_;
   Velocity velocity_;
   Configuration trial_;
-  Eigen::VectorXd Q_, residual_, delta_, increment_, a1_, v1_, vd_;
+  Eigen::VectorXd Q_, residual_, delta_, increment_, a1_, v1_;
 };
 
 }  // namespace rigflex::rig
