@@ -13,7 +13,10 @@
 // converged (MITC4 at 8x, the 8-node at 4x the prescribed mesh; they agree
 // within 0.3 %), lie up to 1.45 % below FV15's targets and 0.9-1.1 % /
 // 1.9-2.4 % below FV22's fourth and sixth (docs/fe-core.md): the targets themselves
-// sit that far from the Mindlin plate's solution. So 1.5 % where the
+// sit that far from the Mindlin plate's solution, which a Ritz solution of
+// the plate with no element in it confirms (verification/plate_ritz.hpp:
+// FV15's targets +0.18..+1.47 % above it, FV22's -0.50..+2.19 %; checked
+// below, TheDefaultShellConvergesToThePlatesOwnSolution). So 1.5 % where the
 // element's own error at the prescribed mesh is small (measured at most
 // 1.06 % on FV15, 0.8 % on FV22's modes 1, 2, 3 and 5), and for FV22's
 // modes 4 and 6 - which converge from below, slowly, because the obtuse
@@ -39,6 +42,7 @@
 
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
+#include "verification/plate_ritz.hpp"
 
 namespace rigflex {
 namespace {
@@ -101,6 +105,37 @@ void check(const Benchmark& b, const Eigen::VectorXd& f, const std::array<double
 
 TEST(DistortedMeshes, TheDefaultShellMeetsFv15AndFv22AtTheirMeshes) {
   for (const Benchmark& b : {kFv15, kFv22}) check(b, frequencies(b, b.divisions, ""), b.tolerance, "default 1x");
+}
+
+// Against the plate's own solution: the Ritz reference on the same plate
+// theory (verification/plate_ritz.hpp, converged to 1e-5), which the
+// benchmark's targets miss by up to 1.45 % (FV15) and 2.1 % (FV22's sixth).
+// Tolerances: FV15 at 12 x 12 within 1 % (measured at most 0.6 %); FV22 at
+// 10 x 10 within 2.5 % (measured up to 2.2 % below on its sixth mode: the
+// 8-node element converges from below past the obtuse clamped corners, and
+// a 10 m plate 1 m thick in 10 x 10 is coarse for modes of 2-3 m
+// wavelength); at twice the meshes both within 1 % (measured at most 0.8 %).
+void check_against_plate(const Benchmark& b, int n, double tolerance, const char* what) {
+  verification::ParallelogramPlate p;
+  p.angle = M_PI / 4.0;
+  p.thickness = b.thickness;
+  const auto exact = verification::clamped_plate_frequencies_hz(p, 6);
+  const Eigen::VectorXd f = frequencies(b, n, "");
+  ASSERT_EQ(f.size(), 6);
+  for (int k = 0; k < 6; ++k) {
+    const double error = f(k) / exact[static_cast<size_t>(k)] - 1.0;
+    std::printf("  %s %s mode %d: %.4f Hz, plate %.4f Hz, %+.2f %% (the target %+.2f %% off the plate)\n", b.name, what,
+                k + 1, f(k), exact[static_cast<size_t>(k)], 100.0 * error,
+                100.0 * (b.target[static_cast<size_t>(k)] / exact[static_cast<size_t>(k)] - 1.0));
+    EXPECT_LT(std::abs(error), tolerance) << b.name << " " << what << " mode " << k + 1;
+  }
+}
+
+TEST(DistortedMeshes, TheDefaultShellConvergesToThePlatesOwnSolution) {
+  check_against_plate(kFv15, kFv15.divisions, 0.01, "default 1x");
+  check_against_plate(kFv22, kFv22.divisions, 0.025, "default 1x");
+  check_against_plate(kFv15, 2 * kFv15.divisions, 0.01, "default 2x");
+  check_against_plate(kFv22, 2 * kFv22.divisions, 0.01, "default 2x");
 }
 
 TEST(DistortedMeshes, TheDefaultShellMeetsFv32AtItsMesh) {
