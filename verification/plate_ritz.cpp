@@ -9,7 +9,8 @@ namespace rigflex::verification {
 namespace {
 
 // Gauss-Legendre nodes and weights on [-1, 1] (Golub-Welsch): exact for
-// polynomials up to degree 2n - 1.
+// polynomials up to degree 2n - 1. fe/gauss_legendre.hpp tabulates the
+// elements' rules, n <= 4; the series here needs n = terms + 2.
 void gauss_legendre(int n, Eigen::VectorXd& x, Eigen::VectorXd& w) {
   Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, n);
   for (int k = 1; k < n; ++k) T(k, k - 1) = T(k - 1, k) = k / std::sqrt(4.0 * k * k - 1.0);

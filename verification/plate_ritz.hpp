@@ -12,6 +12,7 @@
 // For a thin plate the result tends to Kirchhoff's: the clamped square at
 // a/t = 1000 gives Leissa's 35.985, 73.394, 108.22, 131.58, 132.20 (lambda
 // = omega a^2 sqrt(rho t / D)) to 1e-4 (tests/verification/test_plate_ritz.cpp).
+#include <numbers>
 #include <vector>
 
 namespace rigflex::verification {
@@ -19,7 +20,7 @@ namespace rigflex::verification {
 struct ParallelogramPlate {
   double side_a = 10.0;               // m, the edge along x
   double side_b = 10.0;               // m, the edge at `angle` from x
-  double angle = 1.5707963267948966;  // rad, between the two edges (pi / 2: a rectangle)
+  double angle = std::numbers::pi / 2;  // rad, between the two edges (pi / 2: a rectangle)
   double thickness = 0.05;            // m
   double E = 2.0e11, nu = 0.3, rho = 8000.0;
 };
