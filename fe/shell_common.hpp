@@ -91,9 +91,11 @@ MatrixXd bending_B(const Eigen::MatrixX2d& dNxy);
 double drilling_modulus(const ShellProperties& p);
 RowVectorXd drilling_row(const Shape& s, const Eigen::MatrixX2d& dNxy);
 
-// Local mass matrix: rho t N'N on u v w and rho t^3/12 N'N on tx ty tz,
-// integrated with an n x n rule; lumped by row sums (4 nodes) or HRZ
-// diagonal scaling (8 nodes); zero for MassKind::None.
+// Local mass matrix: rho t N'N on u v w and rho t^3/12 N'N on tx ty (the
+// drilling rotation tz carries none), integrated with an n x n rule; lumped
+// by row sums (4 nodes) or HRZ diagonal scaling (8 nodes); zero for
+// MassKind::None. The 8-node element replaces the consistent w, tx, ty
+// part by its condensed 9-node field's (shell_quad8.cpp).
 MatrixXd shell_mass(const LocalFrame& f, ShapeFn shape, int rule, const ShellProperties& p);
 
 // Rotates local matrices (formed on the projected, flat element) to global

@@ -148,8 +148,8 @@ class ModelFileReader {
   // A mesher's element order, one of the shell types' (fe/shell_types.hpp);
   // the meshers generate 4- and 8-node quadrilaterals. Quadratic by default:
   // at a benchmark's own mesh (NAFEMS FV15, 12 x 12 on a 45-degree rhombus)
-  // the 8-node shell is within 1.1 % of the targets, MITC4 up to 16 % off
-  // (docs/fe-core.md).
+  // the 8-node shell is within 1.2 % of the targets and 0.3 % of the
+  // plate's exact solution, MITC4 up to 16 % off (docs/fe-core.md).
   bool quadratic(const YAML::Node& n) {
     const std::string s = c_.text_or(n, "order", "quadratic");
     std::string known;

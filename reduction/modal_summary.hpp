@@ -27,6 +27,8 @@ struct ModalSummary {
   Eigen::MatrixXd cumulative_fraction;
   // Share of each mode's kinetic energy phi' M phi in its translations
   // alone (the rotations' rows zeroed); near 0 for a rotation-only mode.
+  // Where the consistent mass couples translations to rotations (beams,
+  // 8-node shells) it can pass 1 slightly on a coarse mesh.
   Eigen::VectorXd translation_share;
   // Share of it in the shells' drilling rotations (each shell node's
   // rotation about its mean normal). Zeros from summarize_modes, which

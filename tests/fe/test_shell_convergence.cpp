@@ -48,7 +48,8 @@ double ssss_first_frequency(int n, bool quadratic) {
 // differs from the Kirchhoff 2.3767 Hz by 1.5e-4, more than the finest
 // errors). Expected: MITC4 2 (bilinear, eigenvalue error ~ h^2); Quad8 4
 // (quadratic fields, eigenvalue error ~ h^4). Bounds leave +-0.3 for
-// pre-asymptotic effects on the coarse meshes.
+// pre-asymptotic effects on the coarse meshes (Quad8 measured 3.95, 3.92,
+// 3.75).
 TEST(ShellConvergence, SimplySupportedSquarePlateRates) {
   const double exact = mindlin_ss_frequency(10.0, 10.0, 0.05, 1, 1);
   const double kirchhoff = kirchhoff_frequency(2.0 * pi * pi, 10.0, kE, kNu, kRho, 0.05);

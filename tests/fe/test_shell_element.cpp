@@ -217,6 +217,7 @@ TEST(ShellElement, FrameIndependence) {
     Eigen::MatrixXd P = Eigen::MatrixXd::Zero(6 * n, 6 * n);  // u_shifted = P u_original
     for (Eigen::Index i = 0; i < n; ++i) P.block<6, 6>(6 * i, 6 * perm[static_cast<size_t>(i)]).setIdentity();
     EXPECT_LT((P.transpose() * e2.K * P - e0.K).norm(), 1e-12 * e0.K.norm()) << (quadratic ? "Quad8" : "MITC4");
+    EXPECT_LT((P.transpose() * e2.M * P - e0.M).norm(), 1e-12 * e0.M.norm()) << (quadratic ? "Quad8" : "MITC4");
   }
 }
 

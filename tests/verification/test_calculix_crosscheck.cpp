@@ -314,8 +314,8 @@ TEST(CalculixCrossCheck, Mitc4Plate) {
   expect_modes_within(c, first_modes(10), 0.015);
 }
 
-// (c) 8-node shells, 16 x 8 (S8R = C3D20R). Measured: +0.03..+0.68 %
-// (+0.44 % at 24 x 12). Tolerance 1.5 %, as for MITC4.
+// (c) 8-node shells, 16 x 8 (S8R = C3D20R). Measured: +0.02..+0.67 %.
+// Tolerance 1.5 %, as for MITC4.
 TEST(CalculixCrossCheck, Quad8Plate) {
   REQUIRE_CCX("cross-check");
   const Comparison c = compare(cantilever_plate(true, 16, 8, false), 10, "quad8-plate");
