@@ -89,9 +89,9 @@ TEST_P(ShellElementCase, MassTotals) {
   for (MassKind kind : {MassKind::Consistent, MassKind::Lumped}) {
     const ElementMatrices e = element(x, props(t, kind));
     for (int d = 0; d < 6; ++d) {
+      if (d >= 3 && kind == MassKind::Consistent && GetParam().quadratic) continue;
       Eigen::VectorXd u = Eigen::VectorXd::Zero(e.M.rows());
       for (size_t i = 0; i < x.size(); ++i) u(6 * static_cast<Eigen::Index>(i) + d) = 1.0;
-      if (d >= 3 && kind == MassKind::Consistent && GetParam().quadratic) continue;
       const double rotary = t * t / 12.0 * (1.0 - normal(d % 3) * normal(d % 3));
       const double expected = 8000.0 * t * A * (d < 3 ? 1.0 : rotary);
       EXPECT_NEAR(u.dot(e.M * u), expected, 1e-12 * 8000.0 * t * A * (d < 3 ? 1.0 : t * t / 12.0)) << "dof " << d;

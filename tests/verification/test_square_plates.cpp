@@ -40,6 +40,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 
 #include "io/model_reader.hpp"
@@ -93,31 +94,36 @@ std::array<double, 7> thin_plate_solution() {
   return f;
 }
 
-void check(const std::array<double, 7>& f, const std::array<double, 7>& reference,
-           const std::array<double, 7>& tolerance, const char* what, const char* against) {
-  for (size_t k = 0; k < 7; ++k) {
-    if (tolerance[k] <= 0) continue;  // not held against this reference
+// f against `reference` mode by mode (the first being mode `first`), each
+// within its tolerance.
+void check(const char* name, std::span<const double> f, std::span<const double> reference,
+           std::span<const double> tolerance, int first, const char* what, const char* against) {
+  ASSERT_EQ(f.size(), reference.size());
+  ASSERT_EQ(f.size(), tolerance.size());
+  for (size_t k = 0; k < f.size(); ++k) {
     const double error = f[k] / reference[k] - 1.0;
-    std::printf("  FV12 %s mode %zu: %.4f Hz, %s %.4f Hz, %+.2f %%\n", what, k + 4, f[k], against, reference[k],
+    std::printf("  %s %s mode %zu: %.4f Hz, %s %.4f Hz, %+.2f %%\n", name, what, k + first, f[k], against, reference[k],
                 100.0 * error);
-    EXPECT_LT(std::abs(error), tolerance[k]) << "FV12 " << what << " mode " << k + 4;
+    EXPECT_LT(std::abs(error), tolerance[k]) << name << " " << what << " mode " << k + first;
   }
 }
 
 TEST(FreePlate, TheDefaultShellAtFv12sMeshAgainstTheThinPlateSolution) {
-  check(elastic_frequencies(4), thin_plate_solution(), {0.01, 0.01, 0.01, 0.01, 0.01, 0.03, 0.03}, "default 4x4",
-        "plate");
+  const std::array<double, 7> tolerance{0.01, 0.01, 0.01, 0.01, 0.01, 0.03, 0.03};
+  check("FV12", elastic_frequencies(4), thin_plate_solution(), tolerance, 4, "default 4x4", "plate");
 }
 
 TEST(FreePlate, TheDefaultShellAtTwiceFv12sMesh) {
   std::array<double, 7> tolerance{};
   tolerance.fill(0.003);
-  check(elastic_frequencies(8), thin_plate_solution(), tolerance, "default 8x8", "plate");
+  check("FV12", elastic_frequencies(8), thin_plate_solution(), tolerance, 4, "default 8x8", "plate");
 }
 
 TEST(FreePlate, TheDefaultShellMeetsFv12sTargetsForModes4To8) {
-  const std::array<double, 7> target{1.622, 2.360, 2.922, 4.233, 4.233, 7.416, 7.416};
-  check(elastic_frequencies(4), target, {0.01, 0.01, 0.01, 0.01, 0.01, 0.0, 0.0}, "default 4x4", "target");
+  const std::array<double, 5> target{1.622, 2.360, 2.922, 4.233, 4.233};
+  const std::array<double, 5> tolerance{0.01, 0.01, 0.01, 0.01, 0.01};
+  const std::array<double, 7> f = elastic_frequencies(4);
+  check("FV12", std::span(f).first<5>(), target, tolerance, 4, "default 4x4", "target");
 }
 
 TEST(CantileveredPlate, TheDefaultShellMeetsFv16sTargetsAtItsMesh) {
@@ -128,14 +134,10 @@ TEST(CantileveredPlate, TheDefaultShellMeetsFv16sTargetsAtItsMesh) {
   const reduction::ModalAnalysis a = reduction::run_modal_analysis(file.model, o);
   ASSERT_TRUE(a.result.converged) << a.result.message;
   const Eigen::VectorXd f = a.result.frequencies_hz();
-  ASSERT_EQ(f.size(), 6);
   const std::array<double, 6> target{0.421, 1.029, 2.582, 3.306, 3.753, 6.555};
-  for (size_t k = 0; k < 6; ++k) {
-    const double error = f(static_cast<Eigen::Index>(k)) / target[k] - 1.0;
-    std::printf("  FV16 default 4x4 mode %zu: %.4f Hz, target %.3f Hz, %+.2f %%\n", k + 1,
-                f(static_cast<Eigen::Index>(k)), target[k], 100.0 * error);
-    EXPECT_LT(std::abs(error), 0.01) << "FV16 mode " << k + 1;
-  }
+  const std::array<double, 6> tolerance{0.01, 0.01, 0.01, 0.01, 0.01, 0.01};
+  check("FV16", std::span<const double>(f.data(), static_cast<size_t>(f.size())), target, tolerance, 1, "default 4x4",
+        "target");
 }
 
 }  // namespace
