@@ -23,7 +23,10 @@
 // -0.35..-2.17 % against the plate's exact solution, now +0.12..+0.88 %;
 // FV15 (thin) +0.03..+0.53 %, now +0.02..+0.30 %
 // (tests/verification/test_distorted_meshes.cpp). Lumped mass stays the
-// serendipity HRZ diagonal.
+// serendipity HRZ diagonal. The condensation is static, so the centre's own
+// dynamics are left out: an error of order (omega h / c_shear)^2 that makes
+// thick plates converge as h^2 instead of h^4 (docs/fe-core.md, "Thick
+// plates"); a centre node kept as a DOF of its own would remove it.
 #include <array>
 #include <cmath>
 #include <stdexcept>

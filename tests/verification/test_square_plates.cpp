@@ -1,7 +1,8 @@
-// NAFEMS's thin square plates at their prescribed meshes, read from model
-// files as a user writes them (a shell patch with the benchmark's divisions
-// and no `order`, so the meshers' default element is what is checked): FV12
-// free, FV16 cantilevered.
+// NAFEMS's square plates, read from model files as a user writes them (a
+// shell patch with the benchmark's divisions and no `order`, so the
+// meshers' default element is what is checked): the thin FV12 (free) and
+// FV16 (cantilevered) at their prescribed meshes; the thick, simply
+// supported plate of R0016's Test 21 (at the end) against its closed form.
 //
 // FV12 (NAFEMS R0015; data and targets as quoted in Altair's OS-V 0420 and
 // CATIA's NAFEMS set): a 10 x 10 m plate, t = 0.05 m, E = 200 GPa,
@@ -37,6 +38,7 @@
 // Tolerance 1 %: measured -0.67 .. +0.19 %.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -52,16 +54,20 @@ namespace {
 constexpr double kE = 2.0e11, kNu = 0.3, kRho = 8000.0, kT = 0.05, kA = 10.0;
 
 // `supports` is the model file's supports section.
-std::string model_text(int n, const char* name, const char* supports) {
-  char buf[800];
-  std::snprintf(buf, sizeof buf,
-                "name: %s\nmaterials:\n  steel: {E: %g, nu: %g, rho: %g}\nshell_sections:\n"
-                "  plate: {material: steel, thickness: %g}\nshell_patches:\n"
-                "  - {id: plate, corners: [[0, 0, 0], [%g, 0, 0], [%g, %g, 0], [0, %g, 0]], divisions: [%d, %d], "
-                "section: plate}\n"
-                "node_sets:\n  all: {box: [[-1, -1, -1], [11, 11, 1]]}\n  root: {line: [[0, 0, 0], [0, 10, 0]]}\n"
-                "supports:\n%s",
-                name, kE, kNu, kRho, kT, kA, kA, kA, kA, n, n, supports);
+std::string model_text(int n, const char* name, const char* supports, double thickness = kT) {
+  char buf[1600];
+  const int written =
+      std::snprintf(buf, sizeof buf,
+                    "name: %s\nmaterials:\n  steel: {E: %g, nu: %g, rho: %g}\nshell_sections:\n"
+                    "  plate: {material: steel, thickness: %g}\nshell_patches:\n"
+                    "  - {id: plate, corners: [[0, 0, 0], [%g, 0, 0], [%g, %g, 0], [0, %g, 0]], divisions: [%d, %d], "
+                    "section: plate}\n"
+                    "node_sets:\n  all: {box: [[-1, -1, -1], [11, 11, 1]]}\n  root: {line: [[0, 0, 0], [0, 10, 0]]}\n"
+                    "  far_x: {line: [[10, 0, 0], [10, 10, 0]]}\n  near_y: {line: [[0, 0, 0], [10, 0, 0]]}\n"
+                    "  far_y: {line: [[0, 10, 0], [10, 10, 0]]}\n"
+                    "supports:\n%s",
+                    name, kE, kNu, kRho, thickness, kA, kA, kA, kA, n, n, supports);
+  EXPECT_LT(written, static_cast<int>(sizeof buf)) << "model text truncated";
   return buf;
 }
 
@@ -138,6 +144,105 @@ TEST(CantileveredPlate, TheDefaultShellMeetsFv16sTargetsAtItsMesh) {
   const std::array<double, 6> tolerance{0.01, 0.01, 0.01, 0.01, 0.01, 0.01};
   check("FV16", std::span<const double>(f.data(), static_cast<size_t>(f.size())), target, tolerance, 1, "default 4x4",
         "target");
+}
+
+// ---------------------------------------------------------------- Test 21
+// NAFEMS R0016 Test 21 (R0015's thick plate as shells; Abaqus's Benchmarks
+// Test 21, Altair's OS-V 0470): the square plate 1 m thick, simply
+// supported - in-plane motion and drilling held everywhere, w on the four
+// edges, and the rotation along each edge (RX on x = 0, 10; RY on y = 0,
+// 10). Targets 45.897, 109.44 (twice), 167.89, 204.51 (twice), 256.50
+// (twice) Hz: the Mindlin plate's closed form with Mindlin's shear
+// coefficient pi^2/12 (reproduced below to their digits). rigflex's shells
+// take 5/6, which puts the plate 0.03-0.16 % higher.
+//
+// The closed form (Navier): mode (m, n) is w = W sin(alpha x) sin(beta y),
+// the rotations X cos sin, Y sin cos, alpha = m pi / a, beta = n pi / a; the
+// plate's energies then reduce to a 3 x 3 eigenproblem per (m, n).
+double navier_frequency(int m, int n, double thickness, double shear_coefficient) {
+  const double D = kE * std::pow(thickness, 3) / (12.0 * (1.0 - kNu * kNu)), G = kE / (2.0 * (1.0 + kNu));
+  const double alpha = m * M_PI / kA, beta = n * M_PI / kA;
+  Eigen::Matrix3d K = Eigen::Matrix3d::Zero();  // [W, X, Y]
+  auto add = [&K](double stiffness, const Eigen::Vector3d& strain) { K += stiffness * strain * strain.transpose(); };
+  add(D, Eigen::Vector3d(0, alpha, 0));  // curvature x
+  add(D, Eigen::Vector3d(0, 0, beta));   // curvature y
+  K(1, 2) += kNu * D * alpha * beta;     // Poisson coupling of the two curvatures
+  K(2, 1) += kNu * D * alpha * beta;
+  add(D * (1.0 - kNu) / 2.0, Eigen::Vector3d(0, beta, alpha));           // twist
+  add(shear_coefficient * G * thickness, Eigen::Vector3d(alpha, 1, 0));  // shear xz
+  add(shear_coefficient * G * thickness, Eigen::Vector3d(beta, 0, 1));   // shear yz
+  const Eigen::Vector3d mass(kRho * thickness, kRho * std::pow(thickness, 3) / 12.0,
+                             kRho * std::pow(thickness, 3) / 12.0);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix3d> eig(K, Eigen::Matrix3d(mass.asDiagonal()),
+                                                                      Eigen::EigenvaluesOnly);
+  return std::sqrt(eig.eigenvalues()(0)) / (2.0 * M_PI);
+}
+
+// The eight lowest, in order: (1,1), (1,2) (2,1), (2,2), (1,3) (3,1), (2,3) (3,2).
+std::array<double, 8> thick_plate_solution(double shear_coefficient) {
+  const std::array<std::array<int, 2>, 8> mn{{{1, 1}, {1, 2}, {2, 1}, {2, 2}, {1, 3}, {3, 1}, {2, 3}, {3, 2}}};
+  std::array<double, 8> f{};
+  for (size_t k = 0; k < 8; ++k) f[k] = navier_frequency(mn[k][0], mn[k][1], 1.0, shear_coefficient);
+  return f;
+}
+
+constexpr std::array<double, 8> kTest21Targets{45.897, 109.44, 109.44, 167.89, 204.51, 204.51, 256.50, 256.50};
+
+std::array<double, 8> test21_frequencies(int n) {
+  const char* supports =
+      "  - {set: all, dofs: [UX, UY, RZ]}\n  - {set: root, dofs: [UZ, RX]}\n  - {set: far_x, dofs: [UZ, RX]}\n"
+      "  - {set: near_y, dofs: [UZ, RY]}\n  - {set: far_y, dofs: [UZ, RY]}\n";
+  const io::ModelFile file = io::parse_model(model_text(n, "Test21", supports, 1.0), "Test21");
+  linalg::EigenOptions o;
+  o.count = 8;
+  const reduction::ModalAnalysis a = reduction::run_modal_analysis(file.model, o);
+  EXPECT_TRUE(a.result.converged) << a.result.message;
+  const Eigen::VectorXd f = a.result.frequencies_hz();
+  std::array<double, 8> out{};
+  if (f.size() < 8) {
+    ADD_FAILURE() << "Test 21 " << n << " x " << n << ": " << f.size() << " modes";
+    return out;
+  }
+  for (size_t k = 0; k < 8; ++k) out[k] = f(static_cast<Eigen::Index>(k));
+  return out;
+}
+
+// The closed form with pi^2/12 is the targets to their printed digits
+// (+-0.02 % at 45.897; measured within 0.005 %): it is what NAFEMS
+// tabulates, and the derivation above is right.
+TEST(ThickPlate, TheClosedFormWithMindlinsCoefficientIsTheTargets) {
+  std::array<double, 8> tolerance{};
+  tolerance.fill(2e-4);
+  check("Test 21", thick_plate_solution(M_PI * M_PI / 12.0), kTest21Targets, tolerance, 1, "closed form pi^2/12",
+        "target");
+}
+
+// The default 8-node shell against the closed form with its own 5/6. Its
+// centre node is condensed statically element by element, which leaves out
+// the centre's own dynamics: an error that grows as (omega h / c_shear)^2,
+// negligible on thin shells but about h^2 on this plate (measured, mode 7:
+// +0.99 % at 8 x 8, +0.22 % at 16 x 16, +0.054 % at 32 x 32; condensing at
+// the mode's own frequency instead gives +0.21 % and +0.014 %, the 9-node
+// field's h^4). Tolerances: 8 x 8 1.2 % (measured +0.03 .. +0.99 %), 16 x 16
+// 0.3 % (+0.007 .. +0.22 %); both fail on a shear coefficient of 1
+// instead of 5/6 (+2.0 % on mode 7) or the rotations' inertia left out
+// (+2.9 %).
+TEST(ThickPlate, TheDefaultShellConvergesToTheMindlinPlate) {
+  const std::array<double, 8> exact = thick_plate_solution(5.0 / 6.0);
+  std::array<double, 8> coarse{}, fine{};
+  coarse.fill(0.012);
+  fine.fill(0.003);
+  check("Test 21", test21_frequencies(8), exact, coarse, 1, "default 8x8", "plate");
+  check("Test 21", test21_frequencies(16), exact, fine, 1, "default 16x16", "plate");
+}
+
+// Against the published targets at 16 x 16 within 1 % (measured +0.04 ..
+// +0.38 %); at 8 x 8 modes 7-8 read +1.15 % (the condensation's error
+// above, plus the coefficient's 0.16 %).
+TEST(ThickPlate, TheDefaultShellMeetsTheTargetsAt16x16) {
+  std::array<double, 8> tolerance{};
+  tolerance.fill(0.01);
+  check("Test 21", test21_frequencies(16), kTest21Targets, tolerance, 1, "default 16x16", "target");
 }
 
 }  // namespace
