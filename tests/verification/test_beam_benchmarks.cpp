@@ -19,7 +19,8 @@
 // and Altair's SS-V 2080 quote the data and both columns): mean radius
 // R = 1 m, solid circle d = 0.1 m. Targets for the pairs of modes 7-16:
 // 52.29, 53.97, 149.7, 152.4, 288.3 Hz (a sixth pair, 288.3, repeats the
-// fifth's and is left out: every model here puts it 1.3 % higher). Those
+// fifth's and is left out: the 20 chords that give the other five put it
+// at 291.9 Hz, and the ring's own solution without shear at 288.0). Those
 // targets are what 20 straight Euler-Bernoulli elements with rotary
 // inertia give - measured here to 0.03 % - not the ring's own solution,
 // which those 20 chords overestimate by 1.2 %. The ring's own solution is
