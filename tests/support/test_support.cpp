@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 
+#include "io/model_reader.hpp"
+
 namespace rigflex::test {
 
 std::string verification_path(const std::string& file) { return std::string(RIGFLEX_VERIFICATION_DIR) + "/" + file; }
@@ -45,6 +47,21 @@ reduction::ModalAnalysis checked_modal_analysis(const fe::Model& m, int count) {
   EXPECT_LT(a.result.backward_errors.maxCoeff(), 1e-10);
   EXPECT_LT(a.result.orthogonality_error, 1e-10);
   return a;
+}
+
+Eigen::VectorXd model_frequencies(const std::string& text, const std::string& name, int count) {
+  const io::ModelFile file = io::parse_model(text, name);
+  const Eigen::VectorXd f = checked_modal_analysis(file.model, count).result.frequencies_hz();
+  if (f.size() >= count) return f;
+  ADD_FAILURE() << name << ": " << f.size() << " of " << count << " modes";
+  return {};
+}
+
+Eigen::VectorXd elastic_modes(const Eigen::VectorXd& f, int rigid, double first_elastic_hz) {
+  if (f.size() <= rigid) return {};
+  EXPECT_LT(f(rigid - 1), 1e-3) << rigid << " rigid modes expected";
+  EXPECT_GT(f(rigid), first_elastic_hz) << "only " << rigid << " rigid modes expected";
+  return f.tail(f.size() - rigid);
 }
 
 }  // namespace rigflex::test

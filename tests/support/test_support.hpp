@@ -28,4 +28,13 @@ std::vector<double> verification_frequencies(const std::string& file, const std:
 // converged, accurate and M-orthogonal eigenpairs.
 reduction::ModalAnalysis checked_modal_analysis(const fe::Model& m, int count);
 
+// The `count` lowest frequencies (Hz) of the model in a model file's text,
+// by checked_modal_analysis; fewer is a failure naming `name`, and gives an
+// empty vector.
+Eigen::VectorXd model_frequencies(const std::string& text, const std::string& name, int count);
+// The frequencies of f past its `rigid` rigid modes: those below 1e-3 Hz and
+// the next above `first_elastic_hz`, each a failure otherwise. Empty f
+// (a failure already) gives an empty result.
+Eigen::VectorXd elastic_modes(const Eigen::VectorXd& f, int rigid, double first_elastic_hz);
+
 }  // namespace rigflex::test
