@@ -118,14 +118,17 @@ inline fe::Model model_of(const std::string& spec, std::string& kind) {
   kind = spec.substr(0, colon);
   const double dofs = static_cast<double>(bench::parse_size(spec.substr(colon + 1)));
   if (kind == "plate") return bench::clamped_plate(bench::divisions_for(static_cast<long>(dofs)));
-  // 8-node grid of n x n elements: (3 n^2 + 2 n) nodes, 6 DOFs each.
-  if (kind == "quad8") return bench::clamped_plate(static_cast<int>(std::lround(std::sqrt(dofs / 18.0))), true);
+  // 8-node grid of n x n elements: (3 n^2 + 2 n) nodes, 6 DOFs each, and
+  // n^2 centres of 3 coordinates each.
+  if (kind == "quad8") return bench::clamped_plate(static_cast<int>(std::lround(std::sqrt(dofs / 21.0))), true);
+  // The same mesh with each centre condensed statically: what the centres cost.
+  if (kind == "quad8c") return bench::clamped_plate(static_cast<int>(std::lround(std::sqrt(dofs / 21.0))), true, false);
   if (kind == "lattice") return beam_lattice(static_cast<int>(std::lround(std::cbrt(dofs / 6.0))));
   // 32 nodes per section ring, 6 DOFs each.
   if (kind == "girder") return shell_girder(static_cast<int>(std::lround(dofs / 192.0)));
   // per bay: 2 x 4 rail nodes + 3 interior rung nodes = 11 nodes, 66 DOFs.
   if (kind == "ladder") return beam_ladder(static_cast<int>(std::lround(dofs / 66.0)));
-  throw std::invalid_argument("unknown model kind '" + kind + "' (plate, quad8, girder, lattice, ladder)");
+  throw std::invalid_argument("unknown model kind '" + kind + "' (plate, quad8, quad8c, girder, lattice, ladder)");
 }
 
 }  // namespace rigflex::bench

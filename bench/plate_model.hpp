@@ -11,14 +11,17 @@
 #include "fe/meshers.hpp"
 #include "fe/model.hpp"
 #include "fe/node_merger.hpp"
+#include "fe/shell_centres.hpp"
 
 namespace rigflex::bench {
 
 // n x n MITC4 elements over 1 m x 1 m x 10 mm, all edges clamped; interior
-// nodes carry 6 DOFs: 6 (n-1)^2. quadratic: 8-node elements instead.
+// nodes carry 6 DOFs: 6 (n-1)^2. quadratic: 8-node elements instead, each
+// with its centre's three coordinates as a model file gives them (centres)
+// or with the centre condensed statically.
 inline int divisions_for(long dofs) { return static_cast<int>(std::lround(std::sqrt(dofs / 6.0))) + 1; }
 
-inline fe::Model clamped_plate(int n, bool quadratic = false) {
+inline fe::Model clamped_plate(int n, bool quadratic = false, bool centres = true) {
   fe::Model m;
   m.materials["steel"] = {"steel", 2.1e11, 0.3, 7850.0};
   m.shell_sections["plate"] = {"plate", "steel", 0.010};
@@ -34,6 +37,7 @@ inline fe::Model clamped_plate(int n, bool quadratic = false) {
     for (int c = 0; c < g.cols; ++c)
       if ((r == 0 || c == 0 || r == g.rows - 1 || c == g.cols - 1) && g.at(r, c) != 0)  // 0: no node there
         m.supports.push_back({"edge", g.at(r, c), {true, true, true, true, true, true}});
+  if (quadratic && centres) fe::add_shell_centres(m);
   return m;
 }
 

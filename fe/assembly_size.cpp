@@ -74,7 +74,15 @@ class Adjacency {
 AssemblySize assembly_size(const Model& model) {
   Adjacency adj(model.nodes.size());
   for (const BeamElement& b : model.beams) adj.couple(model, b.nodes);
-  for (const ShellElement& s : model.shells) adj.couple(model, s.nodes);
+  for (const ShellElement& s : model.shells) {
+    if (s.centre == 0) {
+      adj.couple(model, s.nodes);
+      continue;
+    }
+    std::vector<NodeId> nodes = s.nodes;
+    nodes.push_back(s.centre);
+    adj.couple(model, nodes);
+  }
   // Counted as six DOFs per node like the rest: solids' unused rotations are
   // dropped later, so the estimate errs on the safe side.
   for (const SolidElement& s : model.solids) adj.couple(model, s.nodes);

@@ -70,9 +70,15 @@ void visit_shells(const Model& model, const ElementVisitor& visit) {
     const ShellProperties p{m.E, m.nu, m.rho, sec.thickness, s.mass};
     x.clear();
     for (NodeId id : s.nodes) x.push_back(model.position(id));
-    const ElementMatrices e = shell_type(s).matrices(x, p);
+    const ShellType& type = shell_type(s);
+    const ElementMatrices e = s.centre != 0 ? type.matrices_with_own(x, p) : type.matrices(x, p);
     require_finite(e.K, e.M, "shell", s.id);
-    visit(node_dofs(model, s.nodes), e.K, e.M);
+    std::vector<long> dofs = node_dofs(model, s.nodes);
+    if (s.centre != 0) {
+      const long base = 6 * static_cast<long>(model.node_index(s.centre));
+      for (int d = 0; d < type.own_coordinates; ++d) dofs.push_back(base + d);
+    }
+    visit(dofs, e.K, e.M);
   }
 }
 

@@ -1,7 +1,7 @@
 #include "fe/mass_properties.hpp"
 
 #include "fe/assembly.hpp"
-
+#include "fe/shell_centres.hpp"
 
 namespace rigflex::fe {
 
@@ -23,10 +23,11 @@ Eigen::MatrixXd rigid_body_modes(const Model& model, const Vec3& about) {
   for (Eigen::Index i = 0; i < n; ++i) {
     phi.block<6, 6>(6 * i, 0) = rigid_motion_at(model.nodes[static_cast<size_t>(i)].x - about);
   }
-  // A superelement's modal coordinates stay at zero in a rigid motion: its
-  // basis reproduces rigid motions with the interface DOFs alone.
-  for (const Superelement& e : model.superelements)
-    for (NodeId id : e.modal_nodes) phi.block<6, 6>(6 * static_cast<Eigen::Index>(model.node_index(id)), 0).setZero();
+  // Element coordinates stay at zero in a rigid motion: a superelement's
+  // basis reproduces rigid motions with the interface DOFs alone, a shell's
+  // centre amplitudes are deformation above what its nodes interpolate.
+  for (NodeId id : coordinate_nodes(model))
+    phi.block<6, 6>(6 * static_cast<Eigen::Index>(model.node_index(id)), 0).setZero();
   return phi;
 }
 

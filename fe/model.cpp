@@ -101,6 +101,13 @@ void validate_shell(const Model& m, const ShellElement& s) {
   require_property(m.materials, sec.material, {"shell_section", sec.name, "material"},
                    "shell section '" + sec.name + "'", "material");
   check_shell_geometry(x, s.id);
+  if (s.centre == 0) return;
+  require_node(m, s.centre, {"shell", s.id, "nodes"}, what);
+  const ShellType& type = *shell_type_with_nodes(s.nodes.size());
+  if (type.own_coordinates == 0 || s.mass != MassKind::Consistent)
+    throw ModelError({"shell", s.id, "mass"}, what + ": a centre node needs an 8-node shell with consistent mass");
+  for (NodeId n : s.nodes)
+    if (n == s.centre) throw ModelError({"shell", s.id, "nodes"}, what + ": its centre node is one of its nodes");
 }
 
 void validate_solid(const Model& m, const SolidElement& s) {
@@ -234,6 +241,42 @@ void validate_distributing(const Model& m, const DistributingCoupling& c, const 
 
 namespace {
 
+// A shell's centre node carries the element's own coordinates (amplitudes,
+// not a place): anything else attached to it would read them as motions.
+void require_centres_untouched(const Model& m, const std::set<NodeId>& centres) {
+  if (centres.empty()) return;
+  auto check = [&](NodeId id, const char* kind, const std::string& entity) {
+    if (centres.count(id))
+      throw ModelError({kind, entity, ""}, std::string(kind) + " '" + entity + "': node " + std::to_string(id) +
+                                               " carries an 8-node shell's centre coordinates; nothing else may "
+                                               "use it (add supports, masses and couplings before the centres)");
+  };
+  for (const auto& b : m.beams)
+    for (NodeId id : b.nodes) check(id, "beam", b.id);
+  for (const auto& s : m.shells)
+    for (NodeId id : s.nodes) check(id, "shell", s.id);
+  for (const auto& s : m.solids)
+    for (NodeId id : s.nodes) check(id, "solid", s.id);
+  for (const auto& p : m.point_masses) check(p.node, "point_mass", p.id);
+  for (const auto& s : m.springs) {
+    check(s.node, "spring", s.id);
+    if (s.other) check(*s.other, "spring", s.id);
+  }
+  for (const auto& s : m.supports) check(s.node, "support", s.id);
+  for (const auto& c : m.couplings) {
+    check(c.reference, "coupling", c.id);
+    for (NodeId id : c.dependents) check(id, "coupling", c.id);
+  }
+  for (const auto& c : m.distributing_couplings) {
+    check(c.reference, "coupling", c.id);
+    for (NodeId id : c.nodes) check(id, "coupling", c.id);
+  }
+  for (const auto& e : m.superelements) {
+    for (const SuperelementDof& d : e.interface) check(d.node, "superelement", e.id);
+    for (NodeId id : e.modal_nodes) check(id, "superelement", e.id);
+  }
+}
+
 void validate_superelement(const Model& model, const Superelement& e) {
   const EntityRef where{"superelement", e.id, ""};
   const std::string what = "superelement '" + e.id + "'";
@@ -271,7 +314,13 @@ void Model::validate() const {
   for (const auto& [name, sec] : beam_sections) sec.validate();
   for (const auto& [name, sec] : shell_sections) sec.validate();
   for (const auto& b : beams) validate_beam(*this, b);
-  for (const auto& s : shells) validate_shell(*this, s);
+  std::set<NodeId> centres;
+  for (const auto& s : shells) {
+    validate_shell(*this, s);
+    if (s.centre != 0 && !centres.insert(s.centre).second)
+      throw ModelError({"shell", s.id, "nodes"}, "shell '" + s.id + "': its centre node " + std::to_string(s.centre) +
+                                                     " is another shell's centre too");
+  }
   for (const auto& s : solids) validate_solid(*this, s);
   for (const auto& p : point_masses) validate_point_mass(*this, p);
   for (const auto& s : springs) validate_spring(*this, s);
@@ -295,6 +344,7 @@ void Model::validate() const {
   for (const auto& [name, ids] : node_sets)
     for (NodeId id : ids) require_node(*this, id, {"node_set", name, ""}, "node set '" + name + "'");
   for (const auto& e : superelements) validate_superelement(*this, e);
+  require_centres_untouched(*this, centres);
 }
 
 }  // namespace rigflex::fe

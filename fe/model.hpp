@@ -55,6 +55,10 @@ struct ShellElement {
   std::vector<NodeId> nodes;
   std::string section;
   MassKind mass = MassKind::Consistent;
+  // A node generated for the element's own coordinates (an 8-node shell's
+  // centre: add_shell_centres()), touched by nothing else; 0: none, and the
+  // element condenses them statically.
+  NodeId centre = 0;
 };
 
 // A continuum element (fe/solid_types.hpp): 8, 20 or 10 nodes choose hex8,

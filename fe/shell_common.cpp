@@ -256,7 +256,8 @@ MatrixXd shell_mass(const LocalFrame& f, ShapeFn shape, int rule, const ShellPro
 
 ElementMatrices to_global(const MatrixXd& K_local, const MatrixXd& M_local, const LocalFrame& f) {
   const auto n = static_cast<int>(f.xy.rows());
-  MatrixXd T = MatrixXd::Zero(6 * n, 6 * n);
+  // Rows past the nodes' are the element's own coordinates: frame-free.
+  MatrixXd T = MatrixXd::Identity(K_local.rows(), K_local.rows());
   for (int i = 0; i < n; ++i) {
     // Local DOFs at the actual node -> DOFs at its projection p = x - z e3,
     // through a rigid link: u_p = u + theta x (p - x) = u - z (ty, -tx, 0).

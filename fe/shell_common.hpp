@@ -95,11 +95,12 @@ RowVectorXd drilling_row(const Shape& s, const Eigen::MatrixX2d& dNxy);
 // drilling rotation tz carries none), integrated with an n x n rule; lumped
 // by row sums (4 nodes) or HRZ diagonal scaling (8 nodes); zero for
 // MassKind::None. The 8-node element replaces the consistent w, tx, ty
-// part by its condensed 9-node field's (shell_quad8.cpp).
+// part by its 9-node field's (shell_quad8.cpp).
 MatrixXd shell_mass(const LocalFrame& f, ShapeFn shape, int rule, const ShellProperties& p);
 
 // Rotates local matrices (formed on the projected, flat element) to global
 // axes at the actual nodes, through rigid offsets along e3 for warped nodes.
+// Rows past the 6 per node (an element's own coordinates) are kept as they are.
 ElementMatrices to_global(const MatrixXd& K_local, const MatrixXd& M_local, const LocalFrame& f);
 
 // Throws std::invalid_argument if the Jacobian is not positive at a point

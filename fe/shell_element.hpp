@@ -24,9 +24,17 @@ ElementMatrices shell_mitc4(const std::vector<Vec3>& x, const ShellProperties& p
 
 // 8-node quadrilateral: corners counter-clockwise, then mid-sides 1-2, 2-3,
 // 3-4, 4-1 (CalculiX S8 / Abaqus node order). Serendipity membrane; plate
-// bending from the 9-node MITC9 field with the centre node condensed.
-// Flat: all 8 nodes must lie (nearly) in one plane.
+// bending from the 9-node MITC9 field with the centre node condensed
+// statically. Flat: all 8 nodes must lie (nearly) in one plane.
 ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p);
+
+// The same element with the centre kept: 51 x 51, the 8 nodes' 48 DOFs then
+// the element's own three coordinates, the centre's w, tx, ty (local axes)
+// above the 8 nodes' serendipity interpolation. They are zero in every rigid
+// motion and carry the centre's own inertia, which the condensed element
+// leaves out (thick plates converge as h^4 instead of h^2). Consistent mass
+// only.
+ElementMatrices shell_quad8_with_centre(const std::vector<Vec3>& x, const ShellProperties& p);
 
 // Both throw std::invalid_argument for a wrong node count, non-physical
 // properties or a non-positive Jacobian; check_shell_geometry() reports

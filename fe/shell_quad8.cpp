@@ -1,5 +1,5 @@
 // 8-node flat shell: serendipity membrane (3x3 Gauss) + MITC9 plate bending
-// with the centre node condensed + drilling stabilization, formed on the
+// (its centre kept or condensed) + drilling stabilization, formed on the
 // element projected onto its mean plane.
 //
 // Why not the serendipity plate with selective (2x2 shear) integration:
@@ -13,23 +13,28 @@
 // Bathe 1993: gamma_r tied at r = +-1/sqrt(3), s = 0, +-sqrt(3/5), linear in
 // r and quadratic in s; gamma_s likewise), which has no spurious modes and
 // showed no shear locking here (clamped plate down to t/L = 1e-4, the
-// MacNeal-Harder patch at L/t = 2400). The centre node's w, tx, ty are
-// condensed out, so the element keeps 8 nodes. The consistent mass of the
-// bending DOFs is that of the same 9-node field, the centre following the
-// boundary nodes as the condensation makes it (T' M9 T): the stiffness and
-// the mass then describe one displacement field. With the serendipity mass
-// instead (the centre's motion left out of the inertia), the rhombic plates'
-// frequencies came out low: NAFEMS FV22 (t = 1 m) at its 10 x 10 mesh
-// -0.35..-2.17 % against the plate's exact solution, now +0.12..+0.88 %;
-// FV15 (thin) +0.03..+0.53 %, now +0.02..+0.30 %
-// (tests/verification/test_distorted_meshes.cpp). Lumped mass stays the
-// serendipity HRZ diagonal. The condensation is static, so the centre's own
-// dynamics are left out: an error of order (omega h / c_shear)^2 that makes
-// thick plates converge as h^2 instead of h^4 (docs/fe-core.md, "Thick
-// plates"); a centre node kept as a DOF of its own would remove it.
+// MacNeal-Harder patch at L/t = 2400). The centre's w, tx, ty are either
+// kept as three coordinates of the element's own (shell_quad8_with_centre:
+// the default, on a node add_shell_centres() generates) or condensed
+// statically (shell_quad8: lumped mass, and models built without centres).
+// Kept, they are hierarchical - the centre's values above the 8 nodes'
+// serendipity interpolation - so rigid motions leave them at zero. The
+// consistent mass of the bending DOFs is that of the same 9-node field
+// (T' M9 T, T the map from the element's DOFs to the field's): the
+// stiffness and the mass then describe one displacement field. With the
+// serendipity mass instead (the centre's motion left out of the inertia),
+// the rhombic plates' frequencies came out low: NAFEMS FV22 (t = 1 m) at
+// its 10 x 10 mesh -0.35..-2.17 % against the plate's exact solution. The
+// static condensation leaves the centre's own dynamics out: an error of
+// order (omega h / c_shear)^2 that makes thick plates converge as h^2
+// (FV22 +0.12..+0.88 %, Test 21 up to +0.99 % at 8 x 8); with the centre
+// kept, +0.05..+0.39 % and +0.28 %, converging as h^4
+// (tests/verification/test_distorted_meshes.cpp, test_square_plates.cpp).
+// Lumped mass stays the serendipity HRZ diagonal.
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "fe/shell_common.hpp"
 #include "fe/shell_element.hpp"
@@ -130,13 +135,9 @@ class Mitc9Shear {
   RowVectorXd xi_rows_[2][3], eta_rows_[2][3];
 };
 
-// Plate stiffness of the 9-node field, centre node condensed.
-struct CondensedBending {
-  MatrixXd K;  // 48 x 48 on the local DOFs of the 8 element nodes (only w, tx, ty populated)
-  MatrixXd T;  // 54 x 48: the 9-node field's DOFs from the 8 nodes' (the centre's by the condensation)
-};
-
-CondensedBending bending_stiffness(const LocalFrame& f, const ShellProperties& p) {
+// Plate stiffness of the 9-node field on its 54 local DOFs (the centre's
+// only through w, tx, ty).
+MatrixXd bending_stiffness(const LocalFrame& f, const ShellProperties& p) {
   const Matrix3d Db = bending_rigidity(p);
   const double Ds = shear_rigidity(p);
   const Mitc9Shear shear(f);
@@ -148,25 +149,53 @@ CondensedBending bending_stiffness(const LocalFrame& f, const ShellProperties& p
     const MatrixXd Bs = J.inverse() * shear.covariant(g.xi, g.eta);
     K += w * (Bb.transpose() * Db * Bb + Ds * Bs.transpose() * Bs);
   }
-  const std::array<int, 3> inner{dof(8, kW), dof(8, kTx), dof(8, kTy)};
-  MatrixXd Kbi(48, 3), Kii(3, 3);
-  for (int a = 0; a < 3; ++a) {
-    Kbi.col(a) = K.col(inner[static_cast<size_t>(a)]).head(48);
-    for (int b = 0; b < 3; ++b) Kii(a, b) = K(inner[static_cast<size_t>(a)], inner[static_cast<size_t>(b)]);
+  return K;
+}
+
+const std::array<int, 3> kCentre{dof(8, kW), dof(8, kTx), dof(8, kTy)};
+
+// The 9-node field's 54 DOFs from the element's: the 48 of the 8 nodes, the
+// centre's w, tx, ty given by `centre` (3 x 48) plus, when `amplitudes`, the
+// element's own three coordinates (columns 48..50).
+MatrixXd field_map(const MatrixXd& centre, bool amplitudes) {
+  MatrixXd T = MatrixXd::Zero(kFull, amplitudes ? 51 : 48);
+  T.topLeftCorner(48, 48).setIdentity();
+  for (size_t a = 0; a < 3; ++a) {
+    T.row(kCentre[a]).head(48) = centre.row(static_cast<Eigen::Index>(a));
+    if (amplitudes) T(kCentre[a], 48 + static_cast<Eigen::Index>(a)) = 1.0;
   }
-  const MatrixXd R = -Kii.ldlt().solve(Kbi.transpose());  // the centre's w, tx, ty from the 48 others
-  CondensedBending out;
-  out.K = K.topLeftCorner(48, 48) + Kbi * R;
-  out.T = MatrixXd::Zero(kFull, 48);
-  out.T.topRows(48).setIdentity();
-  for (int a = 0; a < 3; ++a) out.T.row(inner[static_cast<size_t>(a)]) = R.row(a);
-  return out;
+  return T;
+}
+
+// Static condensation: the centre as the stiffness places it for the
+// boundary nodes' motion, with no load of its own.
+MatrixXd condensed_centre(const MatrixXd& K) {
+  MatrixXd Kbi(48, 3), Kii(3, 3);
+  for (size_t a = 0; a < 3; ++a) {
+    Kbi.col(static_cast<Eigen::Index>(a)) = K.col(kCentre[a]).head(48);
+    for (size_t b = 0; b < 3; ++b)
+      Kii(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) = K(kCentre[a], kCentre[b]);
+  }
+  return -Kii.ldlt().solve(Kbi.transpose());
+}
+
+// Hierarchical centre: the serendipity interpolation of the 8 nodes' w, tx,
+// ty at (0, 0) (corners -1/4, mid-sides +1/2), which any rigid motion meets
+// exactly (the map is isoparametric), so the amplitudes on top are pure
+// deformation and vanish in rigid motion, as mass_properties assumes.
+MatrixXd interpolated_centre() {
+  const Shape s = shape_q8(0.0, 0.0);
+  MatrixXd C = MatrixXd::Zero(3, 48);
+  const std::array<int, 3> local{kW, kTx, kTy};
+  for (int i = 0; i < 8; ++i)
+    for (size_t a = 0; a < 3; ++a) C(static_cast<Eigen::Index>(a), dof(i, local[a])) = s.N(i);
+  return C;
 }
 
 // Consistent mass of w, tx, ty (translation rho t, rotary inertia
-// rho t^3/12 about the in-plane axes, as shell_mass) of the 9-node field,
-// reduced by the condensation T: 48 x 48.
-MatrixXd bending_mass(const LocalFrame& f, const ShellProperties& p, const MatrixXd& T) {
+// rho t^3/12 about the in-plane axes, as shell_mass) of the 9-node field on
+// its 54 DOFs.
+MatrixXd bending_mass(const LocalFrame& f, const ShellProperties& p) {
   MatrixXd G = MatrixXd::Zero(9, 9);
   for (const GaussPoint& g : gauss_rule(3)) {
     const Shape s = shape_q9(g.xi, g.eta);
@@ -180,29 +209,47 @@ MatrixXd bending_mass(const LocalFrame& f, const ShellProperties& p, const Matri
       M(dof(i, kW), dof(j, kW)) = translational * G(i, j);
       for (int a : {kTx, kTy}) M(dof(i, a), dof(j, a)) = rotary * G(i, j);
     }
-  return T.transpose() * M * T;
+  return M;
+}
+
+// Both variants: membrane and drilling on the 48 node DOFs, the 9-node plate
+// through T (54 x 48 condensed, 54 x 51 with the centre's amplitudes).
+ElementMatrices assemble(const std::vector<Vec3>& x, const ShellProperties& p, bool amplitudes) {
+  check_properties(p);
+  if (x.size() != 8) throw std::invalid_argument("shell_quad8: expected 8 nodes");
+  const LocalFrame f = make_local_frame(x);
+  const MatrixXd Kb = bending_stiffness(f, p);
+  const MatrixXd T = field_map(amplitudes ? interpolated_centre() : condensed_centre(Kb), amplitudes);
+  const Eigen::Index n = T.cols();
+  MatrixXd K = T.transpose() * Kb * T;
+  K.topLeftCorner(48, 48) += membrane_drilling_stiffness(f, p);
+  MatrixXd M = MatrixXd::Zero(n, n);
+  M.topLeftCorner(48, 48) = shell_mass(f, shape_q8, 3, p);
+  if (p.mass == MassKind::Consistent && p.rho != 0.0) {
+    // The membrane's u, v keep the serendipity mass; w, tx, ty take the
+    // 9-node field's, which couples them to each other too.
+    const MatrixXd Mb = T.transpose() * bending_mass(f, p) * T;
+    std::vector<Eigen::Index> bending;
+    for (int i = 0; i < 8; ++i)
+      for (int a : {kW, kTx, kTy}) bending.push_back(dof(i, a));
+    for (Eigen::Index c = 48; c < n; ++c) bending.push_back(c);
+    for (Eigen::Index r : bending)
+      for (Eigen::Index c : bending) M(r, c) = Mb(r, c);
+  }
+  return to_global(K, M, f);
 }
 
 }  // namespace quad8
 }  // namespace
 
 ElementMatrices shell_quad8(const std::vector<Vec3>& x, const ShellProperties& p) {
-  check_properties(p);
-  if (x.size() != 8) throw std::invalid_argument("shell_quad8: expected 8 nodes");
-  const LocalFrame f = make_local_frame(x);
-  const quad8::CondensedBending b = quad8::bending_stiffness(f, p);
-  const MatrixXd K = quad8::membrane_drilling_stiffness(f, p) + b.K;
-  MatrixXd M = shell_mass(f, shape_q8, 3, p);
-  if (p.mass == MassKind::Consistent && p.rho != 0.0) {
-    // The membrane's u, v keep the serendipity mass; w, tx, ty take the
-    // condensed 9-node field's, which couples them to each other too.
-    const MatrixXd Mb = quad8::bending_mass(f, p, b.T);
-    for (int i = 0; i < 8; ++i)
-      for (int j = 0; j < 8; ++j)
-        for (int a : {kW, kTx, kTy})
-          for (int c : {kW, kTx, kTy}) M(dof(i, a), dof(j, c)) = Mb(dof(i, a), dof(j, c));
-  }
-  return to_global(K, M, f);
+  return quad8::assemble(x, p, false);
+}
+
+ElementMatrices shell_quad8_with_centre(const std::vector<Vec3>& x, const ShellProperties& p) {
+  if (p.mass != MassKind::Consistent)
+    throw std::invalid_argument("shell_quad8_with_centre: the centre's coordinates need the consistent mass");
+  return quad8::assemble(x, p, true);
 }
 
 }  // namespace rigflex::fe

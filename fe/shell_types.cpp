@@ -10,7 +10,7 @@ const std::vector<ShellType>& shell_types() {
   // (docs/fe-core.md).
   static const std::vector<ShellType> types = {
       {"MITC4", "linear", 4, 9, "S4", shell_mitc4},
-      {"Quad8", "quadratic", 8, 23, "S8R", shell_quad8},
+      {"Quad8", "quadratic", 8, 23, "S8R", shell_quad8, 3, shell_quad8_with_centre},
   };
   return types;
 }

@@ -21,6 +21,11 @@ struct ShellType {
   int vtk_cell = 0;           // VTK cell type (vtkCellType.h); fe itself does not use VTK
   const char* calculix = "";  // the ccx element the cross-checks compare it with
   ElementMatrices (*matrices)(const std::vector<Vec3>& x, const ShellProperties& p) = nullptr;
+  // Coordinates of the element's own, carried by the first DOFs of a node
+  // generated for it (ShellElement::centre, add_shell_centres()), and the
+  // matrices on the nodes' DOFs then those; 0 and nullptr if it has none.
+  int own_coordinates = 0;
+  ElementMatrices (*matrices_with_own)(const std::vector<Vec3>& x, const ShellProperties& p) = nullptr;
 };
 
 // Every shell type, in a fixed order (the CalculiX deck groups by it).

@@ -8,6 +8,7 @@
 
 #include "fe/element_loop.hpp"
 #include "fe/error.hpp"
+#include "fe/shell_centres.hpp"
 #include "io/abaqus_cards.hpp"
 #include "io/input_error.hpp"
 
@@ -92,6 +93,7 @@ class DeckReader {
     for (i_ = 0; i_ < cards_.size(); ++i_) model_card(cards_[i_]);
     build_elements();
     build_supports();
+    fe::add_shell_centres(m_);
     ModelFile out;
     out.model = std::move(m_);
     out.name = name_.empty() ? std::filesystem::path(source_).stem().string() : name_;

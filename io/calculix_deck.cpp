@@ -169,7 +169,12 @@ class InputWriter {
         anchor_.push_back(0);
 
     out_ += "*NODE, NSET=NALL\n";
-    for (const fe::Node& n : m_.nodes) out_ += std::to_string(id(n.id)) + ", " + vec_text(n.x) + "\n";
+    // Shells' centre coordinates are rigflex's own (ccx's S8R has 8 nodes).
+    std::set<fe::NodeId> centres;
+    for (const fe::ShellElement& s : m_.shells)
+      if (s.centre != 0) centres.insert(s.centre);
+    for (const fe::Node& n : m_.nodes)
+      if (!centres.count(n.id)) out_ += std::to_string(id(n.id)) + ", " + vec_text(n.x) + "\n";
     for (const auto& [k, x] : extra_nodes_) out_ += std::to_string(k) + ", " + vec_text(x) + "\n";
   }
 

@@ -13,6 +13,7 @@
 #include "fe/error.hpp"
 #include "fe/meshers.hpp"
 #include "fe/node_selection.hpp"
+#include "fe/shell_centres.hpp"
 #include "fe/shell_types.hpp"
 #include "fe/solid_types.hpp"
 #include "io/gmsh_mesh.hpp"
@@ -97,6 +98,7 @@ class ModelFileReader {
     each_item(root, "supports", [&](const YAML::Node& v) { support(v); });
     each_item(root, "couplings", [&](const YAML::Node& v) { coupling(v); });
     add_modal_nodes();
+    fe::add_shell_centres(m_);
   }
 
  private:

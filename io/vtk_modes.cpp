@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "fe/bounding_box.hpp"
+#include "fe/shell_centres.hpp"
 #include "io/vtk_mesh.hpp"
 
 namespace rigflex::io {
@@ -67,12 +68,16 @@ std::string mode_collection(const Eigen::VectorXd& f, const std::vector<std::str
 void add_mode_shape_files(FileBatch& batch, const fs::path& dir, const fe::Model& model, const fe::DofMap& dofs,
                           const Eigen::VectorXd& frequencies_hz, const Eigen::MatrixXd& vectors) {
   std::vector<std::string> names;
+  const std::vector<fe::NodeId> coordinates = fe::coordinate_nodes(model);
   for (Eigen::Index k = 0; k < vectors.cols(); ++k) {
     char name[32];
     std::snprintf(name, sizeof name, "mode_%03ld.vtu", static_cast<long>(k + 1));
     names.emplace_back(name);
     const double f = frequencies_hz(k);
-    const Eigen::VectorXd normalized = dofs.expand(vectors.col(k));
+    Eigen::VectorXd normalized = dofs.expand(vectors.col(k));
+    // Element coordinates are no displacement of a point: drawn as rest.
+    for (fe::NodeId id : coordinates)
+      normalized.segment<6>(6 * static_cast<Eigen::Index>(model.node_index(id))).setZero();
     const double scale = display_scale(normalized, model_extent(model));
     const Eigen::VectorXd full = scale * normalized;
     batch.add(dir / name, [&model, full, f, k, scale](const fs::path& tmp) {

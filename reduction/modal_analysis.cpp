@@ -1,5 +1,8 @@
 #include "reduction/modal_analysis.hpp"
 
+#include <unordered_set>
+
+#include "fe/shell_centres.hpp"
 #include "reduction/drilling_share.hpp"
 
 namespace rigflex::reduction {
@@ -14,8 +17,12 @@ ModalAnalysis run_modal_analysis(const fe::Model& model, const linalg::EigenOpti
   // An MPI backend may hold the vectors on rank 0 only: no summary elsewhere.
   if (a.result.converged_count > 0 && a.result.vectors.cols() == a.result.converged_count) {
     const Eigen::MatrixXd R = fe::rigid_body_modes_free(model, a.system.dofs, a.mass.cog);
+    // Element coordinates (shells' centres, superelements' modes) are no translations.
+    const std::vector<fe::NodeId> coordinates = fe::coordinate_nodes(model);
+    const std::unordered_set<fe::NodeId> amplitude(coordinates.begin(), coordinates.end());
     std::vector<bool> translation(a.system.dofs.local.size());
-    for (size_t i = 0; i < translation.size(); ++i) translation[i] = a.system.dofs.local[i] < 3;
+    for (size_t i = 0; i < translation.size(); ++i)
+      translation[i] = a.system.dofs.local[i] < 3 && !amplitude.count(a.system.dofs.node[i]);
     a.summary = summarize_modes(a.system.M, a.result.eigenvalues, a.result.vectors, R, translation);
     a.summary.drilling_share = shell_drilling_share(model, a.system.dofs, a.system.M, a.result.vectors);
   }

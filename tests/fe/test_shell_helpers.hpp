@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -23,6 +24,7 @@
 
 #include "fe/assembly.hpp"
 #include "fe/model.hpp"
+#include "fe/shell_centres.hpp"
 #include "fe/shell_element.hpp"
 
 namespace rigflex::fe::shell_test {
@@ -101,8 +103,9 @@ inline Model empty_model(double E, double nu, double rho, double t) {
 }
 
 // Structured a x b plate in the XY plane (origin at a corner), nx x ny
-// elements, MITC4 or Quad8. Nodes that Quad8 does not use (element
-// centres) are not created.
+// elements, MITC4 or Quad8. The grid's element-centre points are not
+// nodes; Quad8 elements with consistent mass get their centre coordinates'
+// node (add_shell_centres), as models read from files do.
 struct PlateMesh {
   Model model;
   int nx = 0, ny = 0;
@@ -134,13 +137,18 @@ inline PlateMesh plate_mesh(double a, double b, int nx, int ny, bool quadratic, 
       }
       pm.model.shells.push_back(e);
     }
+  // As a model file gives them: the default 8-node element keeps its centre.
+  if (quadratic) add_shell_centres(pm.model);
   return pm;
 }
 
 // Adds a support fixing `mask` at every node whose position satisfies `where`.
+// Nodes that carry element coordinates (8-node shells' centres) are no
+// places and are never supported, as a model file's selectors never take them.
 inline void support_where(Model& m, const std::function<bool(const Vec3&)>& where, DofMask mask) {
+  const std::vector<NodeId> coordinates = coordinate_nodes(m);
   for (const Node& n : m.nodes)
-    if (where(n.x)) {
+    if (where(n.x) && std::find(coordinates.begin(), coordinates.end(), n.id) == coordinates.end()) {
       // Merge with an existing support of the node, so that masks add up.
       bool merged = false;
       for (Support& s : m.supports)

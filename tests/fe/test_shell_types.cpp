@@ -37,6 +37,14 @@ TEST(ShellTypes, EveryEntryIsCompleteAndItsMatricesHaveItsNodeCount) {
     EXPECT_EQ(e.M.rows(), 6 * t.nodes);
     // Symmetrized explicitly by the elements, so exact.
     EXPECT_EQ((e.K - e.K.transpose()).norm(), 0.0);
+    // Coordinates of its own: both or neither, and then the matrices have them last.
+    EXPECT_EQ(t.own_coordinates > 0, t.matrices_with_own != nullptr);
+    if (!t.matrices_with_own) continue;
+    const ElementMatrices own =
+        t.matrices_with_own(flat_element(t.nodes), {200e9, 0.3, 7850.0, 0.01, MassKind::Consistent});
+    EXPECT_EQ(own.K.rows(), 6 * t.nodes + t.own_coordinates);
+    EXPECT_EQ(own.M.rows(), 6 * t.nodes + t.own_coordinates);
+    EXPECT_EQ((own.K - own.K.transpose()).norm(), 0.0);
   }
 }
 

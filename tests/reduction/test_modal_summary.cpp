@@ -14,6 +14,7 @@
 #include "fe/mass_properties.hpp"
 #include "fe/meshers.hpp"
 #include "fe/node_merger.hpp"
+#include "fe/shell_centres.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "reduction/modal_summary.hpp"
 #include "support/frame_models.hpp"
@@ -202,6 +203,7 @@ fe::Model plate_with_hung_block(int nx, int ny) {
   const fe::NodeId ref = m.add_node(m.next_node_id(), fe::Vec3(2.0 - 0.085, 1.0 - 0.085, 0.05));
   m.distributing_couplings.push_back({"block", ref, footprint, {}});
   m.point_masses.push_back({"block", ref, 40.0, {0.2, 0.2, 0.3, 0, 0, 0}});
+  fe::add_shell_centres(m);
   return m;
 }
 

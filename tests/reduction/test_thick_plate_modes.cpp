@@ -30,6 +30,7 @@
 #include <cstdio>
 #include <string>
 
+#include "fe/shell_centres.hpp"
 #include "reduction/modal_analysis.hpp"
 #include "support/frame_models.hpp"
 
@@ -52,6 +53,7 @@ fe::Model plate(const Case& c, int nx, int ny) {
     m.point_masses.push_back({"corner", g.at(g.rows - 1, g.cols - 1), mass, {J, J, J, 0, 0, 0}});
     m.point_masses.push_back({"middle", g.at(g.rows / 2, g.cols / 2), mass, {J, J, J, 0, 0, 0}});
   }
+  fe::add_shell_centres(m);
   return m;
 }
 

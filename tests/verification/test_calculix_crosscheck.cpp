@@ -31,7 +31,6 @@
 //
 // Skipped (GTEST_SKIP) only when `ccx` is not on PATH.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <cmath>
@@ -41,11 +40,12 @@
 
 #include "fe/beam_element.hpp"
 #include "fe/meshers.hpp"
-#include "verification/calculix.hpp"
+#include "fe/shell_centres.hpp"
 #include "io/model_reader.hpp"
 #include "reduction/modal_analysis.hpp"
-#include "support/frame_models.hpp"
 #include "require_ccx.hpp"
+#include "support/frame_models.hpp"
+#include "verification/calculix.hpp"
 
 namespace rigflex {
 namespace {
@@ -300,6 +300,7 @@ fe::Model cantilever_plate(bool quadratic, int nx, int ny, bool block) {
                            {true, true, true, true, true, true}});
     m.point_masses.push_back({"block", ref, 20.0, {}});
   }
+  fe::add_shell_centres(m);  // as a model file gets them (ccx's deck leaves them out)
   return m;
 }
 

@@ -14,14 +14,17 @@
 // no element in it gives (verification/plate_ritz.hpp): FV15's targets
 // +0.18..+1.47 % above it, FV22's -0.50..+2.19 % about it (checked below,
 // TheDefaultShellConvergesToThePlatesOwnSolution); the default element
-// converges to that solution from above (0.04 % off at 4x). So 1.5 % on
-// every mode of both: measured at most 1.16 % (FV15's fifth, where the
-// target is 1.47 % above the plate) and 1.33 % (FV22's fifth); FV22's sixth
-// measures -1.28 %, its target being 2.19 % above the plate and the element
-// 0.88 % above it at 10 x 10 - converged, the element would lie 2.1 % below
-// that target. MITC4 (`order: linear`) is checked at twice the prescribed
-// mesh: within 3 % (measured +0.3 .. +2.6 % on FV15; at the prescribed mesh
-// it is up to 16 % high, a stated limit).
+// converges to that solution from above (0.03 % off at 2x). So 1.5 % on
+// every mode NAFEMS gives as a closed form: measured at most 1.16 %
+// (FV15's fifth, where the target is 1.47 % above the plate) and 0.90 %
+// (FV22's fourth). FV22's sixth target is no closed form but a
+// higher-order element's result (NAFEMS's "H.O.E." value), 2.19 % above the
+// plate: an unconverged mesh's frequency, which any converging element
+// passes on its way down. It is checked as such: the default element at the
+// prescribed mesh lies between the plate and that value (measured 0.32 %
+// above the plate, 1.84 % below the target). MITC4 (`order: linear`) is
+// checked at twice the prescribed mesh: within 3 % (measured +0.3 .. +2.6 %
+// on FV15; at the prescribed mesh it is up to 16 % high, a stated limit).
 //
 // FV32, the cantilevered tapered membrane (NAFEMS R0015 / TNSB Rev. 3;
 // its targets not re-read from the document here - the default element at
@@ -52,12 +55,17 @@ struct Benchmark {
   int divisions;                    // the prescribed mesh, n x n
   std::array<double, 6> target;     // Hz
   std::array<double, 6> tolerance;  // relative, for the default element at the prescribed mesh
+  std::array<bool, 6> element_result{};  // the target is a higher-order element's frequency, no closed form
 };
 
 const Benchmark kFv15{
     "FV15", 0.05, 12, {7.938, 12.835, 17.941, 19.133, 24.009, 27.922}, {0.015, 0.015, 0.015, 0.015, 0.015, 0.015}};
-const Benchmark kFv22{
-    "FV22", 1.0, 10, {133.95, 201.41, 265.81, 283.68, 334.45, 386.62}, {0.015, 0.015, 0.015, 0.015, 0.015, 0.015}};
+const Benchmark kFv22{"FV22",
+                      1.0,
+                      10,
+                      {133.95, 201.41, 265.81, 283.68, 334.45, 386.62},
+                      {0.015, 0.015, 0.015, 0.015, 0.015, 0.015},
+                      {false, false, false, false, false, true}};
 
 // The model file: the rhombus' corners, its edge nodes clamped by position.
 std::string model_text(const Benchmark& b, int n, const std::string& order) {
@@ -110,19 +118,35 @@ void check(const Benchmark& b, const Eigen::VectorXd& f, const std::array<double
   check(b, f, tolerance, what, b.target, "target");
 }
 
+std::array<double, 6> plate_solution(const Benchmark& b);
+
 TEST(DistortedMeshes, TheDefaultShellMeetsFv15AndFv22AtTheirMeshes) {
-  for (const Benchmark& b : {kFv15, kFv22}) check(b, frequencies(b, b.divisions, ""), b.tolerance, "default 1x");
+  for (const Benchmark& b : {kFv15, kFv22}) {
+    const Eigen::VectorXd f = frequencies(b, b.divisions, "");
+    ASSERT_EQ(f.size(), 6);
+    const std::array<double, 6> plate = plate_solution(b);
+    for (size_t k = 0; k < 6; ++k) {
+      const double hz = f(static_cast<Eigen::Index>(k)), error = hz / b.target[k] - 1.0;
+      std::printf("  %s default 1x mode %zu: %.4f Hz, target %.4f Hz%s, %+.2f %%\n", b.name, k + 1, hz, b.target[k],
+                  b.element_result[k] ? " (an element's)" : "", 100.0 * error);
+      if (!b.element_result[k]) {
+        EXPECT_LT(std::abs(error), b.tolerance[k]) << b.name << " mode " << k + 1;
+        continue;
+      }
+      EXPECT_GT(hz, plate[k]) << b.name << " mode " << k + 1 << ": below the converged plate";
+      EXPECT_LT(hz, b.target[k]) << b.name << " mode " << k + 1 << ": above the coarser element's result";
+    }
+  }
 }
 
 // Against the plate's own solution: the Ritz reference on the same plate
 // theory (verification/plate_ritz.hpp, converged to 1.5e-5), which the
 // benchmark's targets miss by up to 1.47 % (FV15) and 2.19 % (FV22's sixth).
-// Tolerances: both at the prescribed meshes within 1 % - the aim
-// for the default element - (measured at most 0.30 % on FV15, 0.88 % on
-// FV22's sixth: a 10 m plate 1 m thick in 10 x 10 is coarse for modes of
-// 2-3 m wavelength); at twice the meshes within 0.3 % (measured at most
-// 0.17 %, the element converging from above at about h^2.4 past the obtuse
-// clamped corners).
+// Tolerances: at the prescribed meshes 0.5 % (measured at most +0.29 % on
+// FV15, +0.39 % on FV22's fifth; the element with its centre condensed
+// statically read +0.88 % on FV22's sixth, the centre's inertia left out);
+// at twice the meshes 0.05 % (measured at most 0.03 %: the error falls
+// 10-15 x per halving, near the h^4 of a quadratic element).
 std::array<double, 6> plate_solution(const Benchmark& b) {
   verification::ParallelogramPlate p;
   p.angle = M_PI / 4.0;
@@ -145,8 +169,8 @@ TEST(DistortedMeshes, TheDefaultShellConvergesToThePlatesOwnSolution) {
   };
   for (const Benchmark& b : {kFv15, kFv22}) {
     const std::array<double, 6> exact = plate_solution(b);
-    check(b, frequencies(b, b.divisions, ""), within(0.01), "default 1x", exact, "plate");
-    check(b, frequencies(b, 2 * b.divisions, ""), within(0.003), "default 2x", exact, "plate");
+    check(b, frequencies(b, b.divisions, ""), within(0.005), "default 1x", exact, "plate");
+    check(b, frequencies(b, 2 * b.divisions, ""), within(5e-4), "default 2x", exact, "plate");
   }
 }
 
