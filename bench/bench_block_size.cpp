@@ -25,9 +25,8 @@
 //
 // Usage: bench_block_size [--models kind:size,...] [--blocks 1,4] [--modes 20] [--repeat 2] [--subspace M]
 //                         [--no-verify]
-//   kinds: plate (MITC4), quad8 (8-node shells; quad8c: centres condensed), girder (MITC4 box girder), lattice (3D beam
-//   lattice),
-//          ladder (beam ladder)
+//   kinds: plate (MITC4), quad8 (8-node shells; quad8c: centres condensed), girder (MITC4 box girder),
+//          lattice (3D beam lattice), ladder (beam ladder)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
